@@ -1,0 +1,38 @@
+# evoslam_module(NAME DEPS <targets...>)
+# Builds the library evoslam_<NAME> from the *.cc files of the calling folder and, with tests on,
+# the test binary evoslam_<NAME>_tests from its *_test.cc files. Each module is its own target so
+# that one module can be built and tested while another is being changed.
+set(EVOSLAM_WARNINGS -Wall -Wextra -Wpedantic -Werror)
+set(EVOSLAM_DATA_DIR "${CMAKE_SOURCE_DIR}/../shared/data" CACHE PATH
+    "Folder of the real laser logs; tests that need it skip when it is absent")
+
+function(evoslam_module NAME)
+  cmake_parse_arguments(ARG "" "" "DEPS;TEST_DEPS" ${ARGN})
+  file(GLOB sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/*.cc")
+  file(GLOB tests CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/*_test.cc")
+  if(tests)
+    list(REMOVE_ITEM sources ${tests})
+  endif()
+  set(target evoslam_${NAME})
+  if(sources)
+    add_library(${target} STATIC ${sources})
+    target_include_directories(${target} PUBLIC ${PROJECT_SOURCE_DIR})
+    target_link_libraries(${target} PUBLIC ${ARG_DEPS})
+  else()
+    add_library(${target} INTERFACE)
+    target_include_directories(${target} INTERFACE ${PROJECT_SOURCE_DIR})
+    target_link_libraries(${target} INTERFACE ${ARG_DEPS})
+  endif()
+  if(sources)
+    target_compile_options(${target} PRIVATE ${EVOSLAM_WARNINGS})
+  endif()
+  if(EVOSLAM_BUILD_TESTS AND tests)
+    add_executable(${target}_tests ${tests})
+    target_compile_options(${target}_tests PRIVATE ${EVOSLAM_WARNINGS})
+    target_compile_definitions(${target}_tests PRIVATE
+      EVOSLAM_DATA_DIR="${EVOSLAM_DATA_DIR}"
+      EVOSLAM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+    target_link_libraries(${target}_tests PRIVATE ${target} ${ARG_TEST_DEPS} GTest::gtest GTest::gtest_main GTest::gmock)
+    gtest_discover_tests(${target}_tests DISCOVERY_TIMEOUT 60)
+  endif()
+endfunction()

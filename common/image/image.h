@@ -1,0 +1,46 @@
+#ifndef EVOSLAM_COMMON_IMAGE_IMAGE_H_
+#define EVOSLAM_COMMON_IMAGE_IMAGE_H_
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+namespace evoslam {
+
+struct Rgb {
+  std::uint8_t r = 0;
+  std::uint8_t g = 0;
+  std::uint8_t b = 0;
+  bool operator==(const Rgb&) const = default;
+};
+
+// An 8-bit RGB raster, row 0 at the top. Drawing clips to the image.
+class Image {
+ public:
+  Image() = default;
+  Image(int width, int height, Rgb fill = {255, 255, 255});
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  Rgb& at(int x, int y) { return pixels_[static_cast<std::size_t>(y) * width_ + x]; }
+  const Rgb& at(int x, int y) const { return pixels_[static_cast<std::size_t>(y) * width_ + x]; }
+  bool contains(int x, int y) const { return x >= 0 && y >= 0 && x < width_ && y < height_; }
+
+  void SetPixel(int x, int y, Rgb color);  // ignored outside the image
+  void DrawLine(double x0, double y0, double x1, double y1, Rgb color, int thickness = 1);
+  void DrawDisc(double cx, double cy, double radius, Rgb color);
+
+ private:
+  int width_ = 0;
+  int height_ = 0;
+  std::vector<Rgb> pixels_;
+};
+
+// Writes an 8-bit RGB PNG; throws evoslam::Error naming the path on failure.
+void WritePng(const Image& image, const std::filesystem::path& path);
+// Reads an 8-bit (gray, gray+alpha, RGB or RGBA) PNG; throws evoslam::InputError.
+Image ReadPng(const std::filesystem::path& path);
+
+}  // namespace evoslam
+
+#endif  // EVOSLAM_COMMON_IMAGE_IMAGE_H_
