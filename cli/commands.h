@@ -1,0 +1,17 @@
+#ifndef EVOSLAM_CLI_COMMANDS_H_
+#define EVOSLAM_CLI_COMMANDS_H_
+
+#include <CLI/CLI.hpp>
+
+namespace evoslam::cli {
+
+// Each registers one subcommand of `evoslam`; its callback runs the command and throws
+// evoslam::Error on bad input, which main reports.
+void AddInfoCommand(CLI::App& app);
+void AddSimulateCommand(CLI::App& app);
+void AddLocalizeCommand(CLI::App& app);
+void AddEvalCommand(CLI::App& app);
+
+}  // namespace evoslam::cli
+
+#endif  // EVOSLAM_CLI_COMMANDS_H_

@@ -1,0 +1,31 @@
+#include <cstdio>
+#include <string>
+
+#include "cli/commands.h"
+#include "common/io/carmen_reader.h"
+#include "common/sensor/dataset_summary.h"
+
+namespace evoslam::cli {
+
+void AddInfoCommand(CLI::App& app) {
+  auto* cmd = app.add_subcommand("info", "Describe a CARMEN log (plain, .gz or .bz2)");
+  struct Args {
+    std::string log;
+    bool lenient = false;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("log", args->log, "CARMEN log")->required();
+  cmd->add_flag("--lenient", args->lenient, "Skip malformed lines and report how many");
+  cmd->callback([args] {
+    CarmenReadStats stats;
+    const Dataset dataset = ReadCarmen(args->log, {.lenient = args->lenient}, &stats);
+    std::printf("%s\n", args->log.c_str());
+    std::printf("%s", FormatSummary(Summarize(dataset)).c_str());
+    if (stats.skipped > 0) {
+      std::printf("skipped %zu malformed lines (first: %s)\n", stats.skipped,
+                  stats.first_skip_reason.c_str());
+    }
+  });
+}
+
+}  // namespace evoslam::cli

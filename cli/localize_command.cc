@@ -1,0 +1,227 @@
+#include <omp.h>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <string>
+
+#include "cli/commands.h"
+#include "cli/option_parsing.h"
+#include "common/eval/trajectory_errors.h"
+#include "common/grid/map_io.h"
+#include "common/io/carmen_reader.h"
+#include "common/io/relations.h"
+#include "common/io/trajectory_io.h"
+#include "common/localization/localizer.h"
+#include "common/report/localize_report.h"
+#include "common/report/map_picture.h"
+#include "common/util/error.h"
+#include "common/util/progress_bar.h"
+
+namespace evoslam::cli {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+struct LocalizeArgs {
+  std::string map, map_from_log, log, out, start, relations;
+  std::string fitness = "f3", estimator = "2d", optimizer = "de", strategy = "rand1exp";
+  std::size_t pop = 25, gen = 25, max_scans = 0;
+  double f = 0.6, cr = 0.9, window = 0.6, heading_window = 30.0, heading_step = 0.5;
+  double exhaustive_step = 0.01, max_range = 0.0, grid_resolution = 0.05;
+  std::uint64_t seed = 1;
+  bool use_odometry = false, lenient = false;
+  int threads = 0;
+};
+
+// A grid of the log's reference poses: ground truth where the log has it, else its stated poses.
+OccupancyGrid GridFromLog(const std::string& path, double resolution, bool lenient) {
+  const Dataset dataset = ReadCarmen(path, {.lenient = lenient});
+  std::vector<Pose2> poses;
+  for (const LaserScan& s : dataset.scans) poses.push_back(s.true_pose.value_or(s.pose));
+  spdlog::info("building a {:.3f} m grid from {} scans of {}", resolution, poses.size(), path);
+  OccupancyGrid grid = OccupancyGrid::FromScans(dataset.scans, poses, resolution, 1.0);
+  grid.UpdateDistanceField();
+  return grid;
+}
+
+void Run(const LocalizeArgs& a) {
+  if (a.map.empty() == a.map_from_log.empty()) {
+    throw Error("localize needs exactly one of --map MAP and --map-from-log LOG");
+  }
+  if (a.threads > 0) omp_set_num_threads(a.threads);
+
+  LocalizeOptions options;
+  EstimatorParams& e = options.estimator;
+  e.fitness.kind = ParseFitnessKind(a.fitness);
+  e.estimator = ParseEstimatorKind(a.estimator);
+  e.optimizer = ParseOptimizerKind(a.optimizer);
+  e.de.strategy = ParseDeStrategy(a.strategy);
+  e.de.population = e.pso.particles = a.pop;
+  e.de.generations = e.pso.generations = a.gen;
+  e.de.f = a.f;
+  e.de.cr = a.cr;
+  e.window = a.window;
+  e.heading_half_window = a.heading_window * kDeg;
+  e.heading_step = a.heading_step * kDeg;
+  e.exhaustive_step = a.exhaustive_step;
+  ValidateEstimatorParams(e);
+  options.use_odometry = a.use_odometry;
+  options.seed = a.seed;
+  options.max_range = a.max_range;
+  options.max_scans = a.max_scans;
+  if (!a.start.empty()) options.start = ParsePose(a.start, "--start");
+
+  const std::filesystem::path out(a.out);
+  std::filesystem::create_directories(out);
+
+  CarmenReadStats stats;
+  const Dataset dataset = ReadCarmen(a.log, {.lenient = a.lenient}, &stats);
+  if (stats.skipped > 0) {
+    spdlog::warn("{}: skipped {} malformed lines (first: {})", a.log, stats.skipped,
+                 stats.first_skip_reason);
+  }
+  const MapModel map = a.map.empty()
+                           ? MapModel(GridFromLog(a.map_from_log, a.grid_resolution, a.lenient))
+                           : LoadMapModel(a.map);
+  std::vector<std::string> outputs;
+  if (!a.map_from_log.empty()) {
+    WriteMapYaml(*map.grid(), out / "map.yaml");
+    outputs.insert(outputs.end(), {"map.yaml", "map.pgm"});
+  }
+
+  spdlog::info("localizing {} scans with {} / {} / {}", dataset.scans.size(), a.fitness,
+               a.estimator, a.optimizer);
+  LocalizeResult result;
+  {
+    ProgressBar bar("localize", options.max_scans
+                                    ? std::min(options.max_scans, dataset.scans.size())
+                                    : dataset.scans.size());
+    result =
+        Localize(map, dataset, options, [&](std::size_t done, std::size_t) { bar.Update(done); });
+  }
+
+  WriteTrajectoryText(result.trajectory, out / "trajectory.txt");
+  WriteTrajectoryTum(result.trajectory, out / "trajectory.tum");
+  outputs.insert(outputs.end(), {"trajectory.txt", "trajectory.tum"});
+
+  proto::LocalizeReport report;
+  report.set_format_version(1);
+  report.set_evoslam_version("0.1.0");
+  auto& p = *report.mutable_params();
+  p.set_map(a.map.empty() ? "grid from " + a.map_from_log : a.map);
+  p.set_log(a.log);
+  p.set_fitness(a.fitness);
+  p.set_estimator(a.estimator);
+  p.set_optimizer(a.optimizer);
+  p.set_strategy(a.strategy);
+  p.set_population(static_cast<std::uint32_t>(a.pop));
+  p.set_generations(static_cast<std::uint32_t>(a.gen));
+  p.set_f(a.f);
+  p.set_cr(a.cr);
+  p.set_window_m(a.window);
+  p.set_heading_window_deg(a.heading_window);
+  p.set_heading_step_deg(a.heading_step);
+  p.set_use_odometry(a.use_odometry);
+  p.set_seed(a.seed);
+  p.set_max_range_m(a.max_range);
+  p.set_max_scans(static_cast<std::uint32_t>(a.max_scans));
+  if (options.start) {
+    for (double v : {options.start->x(), options.start->y(), options.start->theta()})
+      p.add_start(v);
+  }
+  report.set_scans(static_cast<std::uint32_t>(result.trajectory.size()));
+  report.set_evaluations(result.evaluations);
+  report.set_runtime_s(result.seconds);
+  report.set_scans_per_second(result.seconds > 0 ? result.trajectory.size() / result.seconds : 0);
+  report.set_threads(static_cast<std::uint32_t>(omp_get_max_threads()));
+
+  std::vector<StampedPose> truth;
+  for (std::size_t i = 0; i < result.trajectory.size(); ++i) {
+    const LaserScan& s = dataset.scans[i];
+    if (s.true_pose) truth.push_back({s.timestamp, *s.true_pose});
+  }
+  if (!truth.empty()) {
+    *report.mutable_absolute_errors() = ToProto(ComputeAbsoluteErrors(result.trajectory, truth));
+  }
+  if (!a.relations.empty()) {
+    *report.mutable_relation_errors() =
+        ToProto(ComputeRelationErrors(result.trajectory, ReadRelations(a.relations)), a.relations);
+  } else if (truth.size() > 1) {
+    *report.mutable_relation_errors() =
+        ToProto(ComputeRelationErrors(result.trajectory, RelationsFromTruth(truth)),
+                "ground truth, consecutive scans");
+  }
+
+  std::vector<TrajectoryLayer> layers;
+  if (!truth.empty()) {
+    TrajectoryLayer t{"truth", {}, {0, 160, 0}};
+    for (const auto& s : truth) t.poses.push_back(s.pose);
+    layers.push_back(std::move(t));
+  }
+  TrajectoryLayer estimated{"estimate", {}, {220, 30, 30}};
+  for (const auto& s : result.trajectory) estimated.poses.push_back(s.pose);
+  layers.push_back(std::move(estimated));
+  WriteMapPicture(map, layers, out / "map.png");
+  outputs.insert(outputs.end(), {"map.png", "report.json", "summary.txt"});
+  for (const auto& o : outputs) report.add_outputs(o);
+
+  WriteJson(report, out / "report.json");
+  const std::string summary = FormatSummary(report);
+  std::ofstream(out / "summary.txt") << summary;
+  std::printf("%s", summary.c_str());
+  std::printf("  wrote %s/{trajectory.txt,trajectory.tum,report.json,summary.txt,map.png}\n",
+              a.out.c_str());
+}
+
+}  // namespace
+
+void AddLocalizeCommand(CLI::App& app) {
+  auto* cmd = app.add_subcommand("localize", "Continual localization of a log in a known map");
+  auto a = std::make_shared<LocalizeArgs>();
+  cmd->add_option("--map", a->map, "known map: LineMap text file or map_server .yaml");
+  cmd->add_option("--map-from-log", a->map_from_log,
+                  "build an occupancy grid from this log's reference poses instead");
+  cmd->add_option("--grid-resolution", a->grid_resolution, "cell size for --map-from-log, m")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--log", a->log, "CARMEN log to localize")->required();
+  cmd->add_option("--start", a->start,
+                  "start pose x,y,theta (m, m, rad); default: first scan's pose");
+  cmd->add_flag("--use-odometry", a->use_odometry, "centre the window on the odometry prediction");
+  cmd->add_option("--fitness", a->fitness, "f3 (L1 sum) or f2 (beams within tolerance)")
+      ->check(CLI::IsMember({"f3", "f2"}));
+  cmd->add_option("--estimator", a->estimator, "2d (heading by brute force) or 3d")
+      ->check(CLI::IsMember({"2d", "3d"}));
+  cmd->add_option("--optimizer", a->optimizer, "de, pso or exhaustive")
+      ->check(CLI::IsMember({"de", "pso", "exhaustive"}));
+  cmd->add_option("--strategy", a->strategy, "DE strategy, e.g. rand1exp, best1bin");
+  cmd->add_option("--pop", a->pop, "population (DE) or particles (PSO)")
+      ->check(CLI::Range(2, 100000));
+  cmd->add_option("--gen", a->gen, "generations")->check(CLI::Range(0, 1000000));
+  cmd->add_option("--F", a->f, "DE differential weight")->check(CLI::Range(0.0, 2.0));
+  cmd->add_option("--CR", a->cr, "DE crossover rate")->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--window", a->window, "side of the square search window, m")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--heading-window", a->heading_window, "heading search half-width, degrees")
+      ->check(CLI::Range(0.0, 180.0));
+  cmd->add_option("--heading-step", a->heading_step, "heading step, degrees")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--exhaustive-step", a->exhaustive_step,
+                  "lattice spacing of --optimizer exhaustive, m")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--max-range", a->max_range, "simulation range limit, m (default: the scan's)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--max-scans", a->max_scans, "localize only the first N scans");
+  cmd->add_option("--relations", a->relations, "relations file for the relative error");
+  cmd->add_option("--seed", a->seed, "random seed");
+  cmd->add_option("--threads", a->threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::Range(1, 1024));
+  cmd->add_flag("--lenient", a->lenient, "skip malformed log lines");
+  cmd->add_option("--out", a->out, "output directory")->required();
+  cmd->callback([a] { Run(*a); });
+}
+
+}  // namespace evoslam::cli

@@ -1,0 +1,55 @@
+#ifndef EVOSLAM_COMMON_LOCALIZATION_POSE_ESTIMATOR_H_
+#define EVOSLAM_COMMON_LOCALIZATION_POSE_ESTIMATOR_H_
+
+#include <cstddef>
+#include <string_view>
+
+#include "common/localization/range_renderer.h"
+#include "common/localization/scan_fitness.h"
+#include "common/optim/differential_evolution.h"
+#include "common/optim/particle_swarm.h"
+#include "common/sensor/laser_scan.h"
+#include "common/transform/pose2.h"
+#include "common/util/random.h"
+
+namespace evoslam {
+
+// 2D: the optimiser searches position, heading by brute force over the window's shifts.
+// 3D: the optimiser searches position and heading together.
+enum class EstimatorKind { k2D, k3D };
+EstimatorKind ParseEstimatorKind(std::string_view name);  // "2d" | "3d"
+std::string_view EstimatorKindName(EstimatorKind kind);
+
+enum class OptimizerKind { kDe, kPso, kExhaustive };
+OptimizerKind ParseOptimizerKind(std::string_view name);  // "de" | "pso" | "exhaustive"
+std::string_view OptimizerKindName(OptimizerKind kind);
+
+struct EstimatorParams {
+  FitnessParams fitness;
+  EstimatorKind estimator = EstimatorKind::k2D;
+  OptimizerKind optimizer = OptimizerKind::kDe;
+  DeParams de;
+  PsoParams pso;
+  double window = 0.6;  // square search window's side, m
+  double heading_half_window = 30.0 * 3.14159265358979323846 / 180.0;  // rad
+  double heading_step = 0.5 * 3.14159265358979323846 / 180.0;          // rad
+  double exhaustive_step = 0.01;  // lattice spacing of the reference, m
+};
+
+struct PoseEstimate {
+  Pose2 pose;
+  double fitness = 0.0;
+  std::size_t evaluations = 0;
+};
+
+// Finds the pose in the window around `center` whose simulated scan best matches `scan`.
+// `max_range` is the range the simulation stops at; observed readings at or beyond it are ignored.
+PoseEstimate EstimatePose(const RangeRenderer& renderer, const LaserScan& scan, const Pose2& center,
+                          const EstimatorParams& params, float max_range, Rng& rng);
+
+// Throws Error naming the offending parameter when params cannot work.
+void ValidateEstimatorParams(const EstimatorParams& params);
+
+}  // namespace evoslam
+
+#endif  // EVOSLAM_COMMON_LOCALIZATION_POSE_ESTIMATOR_H_

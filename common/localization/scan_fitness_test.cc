@@ -1,0 +1,125 @@
+#include "common/localization/scan_fitness.h"
+
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "common/localization/segment_renderer.h"
+#include "common/localization/test_scenes.h"
+#include "common/util/error.h"
+
+namespace evoslam {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180;
+
+TEST(ShiftLayoutTest, HalfDegreeBeamsAndHeadingSteps) {
+  LaserScan scan;
+  scan.angle_min = -90 * kDeg;
+  scan.angle_increment = 0.5 * kDeg;
+  scan.ranges.assign(361, 1.0f);
+  const ShiftLayout l = MakeShiftLayout(scan, 30 * kDeg, 0.5 * kDeg);
+  EXPECT_EQ(l.shifts, 121u);
+  EXPECT_EQ(l.beam_stride, 1u);
+  EXPECT_EQ(l.shift_stride, 1u);
+  EXPECT_EQ(l.rays, 481u);  // 240 degrees of rays
+  EXPECT_NEAR(l.first_offset, -120 * kDeg, 1e-12);
+  EXPECT_NEAR(l.shift_angle(0), -30 * kDeg, 1e-12);
+  EXPECT_NEAR(l.shift_angle(120), 30 * kDeg, 1e-12);
+}
+
+TEST(ShiftLayoutTest, OneDegreeBeamsInterleaveHalfDegreeHeadings) {
+  LaserScan scan;
+  scan.angle_min = -90 * kDeg;
+  scan.angle_increment = 1 * kDeg;
+  scan.ranges.assign(180, 1.0f);
+  const ShiftLayout l = MakeShiftLayout(scan, 10 * kDeg, 0.5 * kDeg);
+  EXPECT_EQ(l.beam_stride, 2u);
+  EXPECT_EQ(l.shift_stride, 1u);
+  EXPECT_EQ(l.shifts, 41u);
+  EXPECT_EQ(l.rays, 179u * 2 + 40 + 1);
+}
+
+TEST(ShiftLayoutTest, FineBeamsUseSeveralRaysPerHeadingStep) {
+  LaserScan scan;
+  scan.angle_increment = 0.25 * kDeg;
+  scan.ranges.assign(721, 1.0f);
+  const ShiftLayout l = MakeShiftLayout(scan, 5 * kDeg, 0.5 * kDeg);
+  EXPECT_EQ(l.shift_stride, 2u);
+  EXPECT_EQ(l.shifts, 21u);
+  EXPECT_NEAR(l.shift_angle(20) - l.shift_angle(19), 0.5 * kDeg, 1e-12);
+}
+
+TEST(ShiftLayoutTest, RejectsUnusableScans) {
+  LaserScan scan;
+  scan.ranges.assign(1, 1.0f);
+  scan.angle_increment = kDeg;
+  EXPECT_THROW(MakeShiftLayout(scan, 0.1, 0.01), Error);
+}
+
+class BestShiftTest : public ::testing::TestWithParam<FitnessKind> {};
+
+// A scan taken at heading h + 7.5 degrees is found at shift +15 of a window centred on h.
+TEST_P(BestShiftTest, RecoversHeadingOffset) {
+  const LineMap map = testing::BoxRoom();
+  const Pose2 truth(2.5, 3.0, 0.4 + 7.5 * kDeg);
+  const LaserScan scan = testing::ScanFrom(map, truth);
+  const ShiftLayout layout = MakeShiftLayout(scan, 30 * kDeg, 0.5 * kDeg);
+  const float max_range = 8.0f;
+  const ObservedBeams observed = PrepareObservation(scan, max_range);
+  const SegmentRenderer renderer(TemporaryMap(map, truth.translation(), 9.0));
+  const RayFan fan(0.4 + layout.first_offset, layout.ray_step, layout.rays);
+  std::vector<float> rays(layout.rays), sums(layout.shifts);
+  renderer.Render(truth.translation(), fan, max_range, rays);
+  FitnessParams params;
+  params.kind = GetParam();
+  const ShiftScore best = BestShift(params, layout, observed, rays, max_range, sums);
+  EXPECT_EQ(best.shift, 60u + 15u);
+  if (params.kind == FitnessKind::kF3) {
+    EXPECT_LT(best.fitness, 0.05);
+  } else {
+    EXPECT_LE(best.fitness, -0.95 * static_cast<double>(observed.index.size()));
+  }
+  // Every other heading scores worse (F2, a count, may tie next to the optimum).
+  for (std::size_t k = 0; k < layout.shifts; ++k) {
+    if (k == best.shift) continue;
+    if (params.kind == FitnessKind::kF3) {
+      EXPECT_GT(sums[k], best.fitness);
+    } else {
+      EXPECT_GE(sums[k], best.fitness);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(F2AndF3, BestShiftTest,
+                         ::testing::Values(FitnessKind::kF3, FitnessKind::kF2));
+
+TEST(ScanFitnessTest, LeavesOutBeamsWithoutReturnOnEitherSide) {
+  LaserScan scan;
+  scan.angle_increment = kDeg;
+  scan.range_max = 8.0;
+  scan.ranges = {1.0f, 8.0f, 2.0f, 0.0f};  // beam 1: no return, beam 3: invalid zero
+  const ObservedBeams observed = PrepareObservation(scan, 8.0f);
+  ASSERT_EQ(observed.index.size(), 2u);
+  EXPECT_EQ(observed.index[0], 0u);
+  EXPECT_EQ(observed.index[1], 2u);
+  FitnessParams f3;
+  // Simulated: beam 0 off by 0.5, beam 2 finds nothing within range (left out).
+  const std::vector<float> rays = {1.5f, 3.0f, 8.0f, 1.0f};
+  EXPECT_FLOAT_EQ(ScoreAligned(f3, observed, rays, 8.0f), 0.5f);
+  FitnessParams f2;
+  f2.kind = FitnessKind::kF2;
+  const std::vector<float> close = {1.02f, 3.0f, 2.01f, 1.0f};
+  EXPECT_FLOAT_EQ(ScoreAligned(f2, observed, close, 8.0f), -2.0f);
+  const std::vector<float> far = {1.2f, 3.0f, 2.01f, 1.0f};
+  EXPECT_FLOAT_EQ(ScoreAligned(f2, observed, far, 8.0f), -1.0f);
+}
+
+TEST(ScanFitnessTest, ParsesNames) {
+  EXPECT_EQ(ParseFitnessKind("f2"), FitnessKind::kF2);
+  EXPECT_EQ(FitnessKindName(ParseFitnessKind("f3")), "f3");
+  EXPECT_THROW(ParseFitnessKind("f4"), Error);
+}
+
+}  // namespace
+}  // namespace evoslam

@@ -1,0 +1,52 @@
+#ifndef EVOSLAM_COMMON_OPTIM_DIFFERENTIAL_EVOLUTION_H_
+#define EVOSLAM_COMMON_OPTIM_DIFFERENTIAL_EVOLUTION_H_
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "common/optim/problem.h"
+#include "common/util/random.h"
+
+namespace evoslam {
+
+// The ten classic strategies of Storn and Price: base vector and number of difference vectors,
+// with binomial or exponential crossover.
+enum class DeStrategy {
+  kRand1Bin,
+  kRand1Exp,
+  kBest1Bin,
+  kBest1Exp,
+  kRandToBest1Bin,
+  kRandToBest1Exp,
+  kBest2Bin,
+  kBest2Exp,
+  kRand2Bin,
+  kRand2Exp,
+};
+
+// Names as on the command line: "rand1bin", "rand1exp", "best1bin", ..., "randtobest1exp".
+DeStrategy ParseDeStrategy(std::string_view name);  // throws Error listing the valid names
+std::string_view DeStrategyName(DeStrategy strategy);
+std::vector<std::string> DeStrategyNames();
+
+// Defaults are the settings of the papers' localization experiments (DE/rand/1/exp, 25 x 25,
+// F 0.6, CR 0.9).
+struct DeParams {
+  DeStrategy strategy = DeStrategy::kRand1Exp;
+  std::size_t population = 25;
+  std::size_t generations = 25;
+  double f = 0.6;
+  double cr = 0.9;
+};
+
+// Synchronous DE: each generation builds all trial vectors, evaluates them as one batch, then
+// keeps each trial that is no worse than its target. Trial coordinates that leave the box are
+// put halfway between the base vector and the violated bound, so the search stays in the window
+// without piling up on its edges.
+OptimResult RunDifferentialEvolution(const Problem& problem, const DeParams& params, Rng& rng);
+
+}  // namespace evoslam
+
+#endif  // EVOSLAM_COMMON_OPTIM_DIFFERENTIAL_EVOLUTION_H_

@@ -1,0 +1,91 @@
+#include "common/report/localize_report.h"
+
+#include <google/protobuf/util/json_util.h>
+
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "common/util/error.h"
+
+namespace evoslam {
+namespace {
+
+double Deg(double rad) { return rad * 180.0 / std::numbers::pi; }
+
+}  // namespace
+
+proto::AbsoluteErrors ToProto(const AbsoluteErrors& e) {
+  proto::AbsoluteErrors p;
+  p.set_poses(static_cast<std::uint32_t>(e.poses));
+  p.set_rms_x_m(e.rms_x);
+  p.set_rms_y_m(e.rms_y);
+  p.set_rms_theta_deg(Deg(e.rms_theta));
+  p.set_rms_translation_m(e.rms_translation);
+  p.set_max_translation_m(e.max_translation);
+  return p;
+}
+
+proto::RelationErrors ToProto(const RelationErrors& e, const std::string& source) {
+  proto::RelationErrors p;
+  p.set_source(source);
+  p.set_relations(static_cast<std::uint32_t>(e.relations));
+  p.set_skipped(static_cast<std::uint32_t>(e.skipped));
+  p.set_translation_mean_m(e.translation_mean);
+  p.set_translation_std_m(e.translation_std);
+  p.set_rotation_mean_deg(Deg(e.rotation_mean));
+  p.set_rotation_std_deg(Deg(e.rotation_std));
+  p.set_translation_sq_mean_m2(e.translation_sq_mean);
+  p.set_translation_sq_std_m2(e.translation_sq_std);
+  p.set_rotation_sq_mean_deg2(Deg(Deg(e.rotation_sq_mean)));
+  p.set_rotation_sq_std_deg2(Deg(Deg(e.rotation_sq_std)));
+  return p;
+}
+
+void WriteJson(const google::protobuf::Message& message, const std::filesystem::path& path) {
+  google::protobuf::util::JsonPrintOptions options;
+  options.add_whitespace = true;
+  options.always_print_primitive_fields = true;
+  options.preserve_proto_field_names = true;
+  std::string json;
+  const auto status = google::protobuf::util::MessageToJsonString(message, &json, options);
+  if (!status.ok()) throw Error(path.string() + ": cannot encode JSON: " + status.ToString());
+  std::ofstream out(path);
+  out << json;
+  if (!out.flush()) throw Error(path.string() + ": cannot write file");
+}
+
+std::string FormatSummary(const proto::LocalizeReport& r) {
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  const auto& p = r.params();
+  s.precision(2);
+  s << "localized " << r.scans() << " scans of " << p.log() << " in " << p.map() << "\n";
+  s << "  " << p.fitness() << ", " << p.estimator() << " estimator, " << p.optimizer();
+  if (p.optimizer() == "de") s << " " << p.strategy();
+  if (p.optimizer() != "exhaustive") {
+    s << " (population " << p.population() << ", generations " << p.generations() << ")";
+  }
+  s << ", window " << p.window_m() << " m, heading +-" << p.heading_window_deg() << " deg\n";
+  s << "  runtime " << r.runtime_s() << " s (" << r.scans_per_second() << " scans/s, "
+    << r.threads() << " threads), " << r.evaluations() << " fitness evaluations\n";
+  if (r.has_absolute_errors()) {
+    const auto& a = r.absolute_errors();
+    s.precision(2);
+    s << "  RMS error vs ground truth: x " << 100 * a.rms_x_m() << " cm, y " << 100 * a.rms_y_m()
+      << " cm, heading " << a.rms_theta_deg() << " deg (max " << 100 * a.max_translation_m()
+      << " cm)\n";
+  }
+  if (r.has_relation_errors()) {
+    const auto& e = r.relation_errors();
+    s.precision(4);
+    s << "  relative error (" << e.source() << ", " << e.relations()
+      << " relations): " << e.translation_mean_m() << " +- " << e.translation_std_m() << " m, ";
+    s.precision(3);
+    s << e.rotation_mean_deg() << " +- " << e.rotation_std_deg() << " deg\n";
+  }
+  return s.str();
+}
+
+}  // namespace evoslam

@@ -1,0 +1,68 @@
+#include "common/report/map_picture.h"
+
+#include <algorithm>
+
+#include "common/image/world_canvas.h"
+
+namespace evoslam {
+namespace {
+
+Bounds PictureBounds(const MapModel& map, std::span<const TrajectoryLayer> layers) {
+  Bounds b;
+  bool any = false;
+  const auto add = [&](const Eigen::Vector2d& p) {
+    b.min = any ? b.min.cwiseMin(p) : p;
+    b.max = any ? b.max.cwiseMax(p) : p;
+    any = true;
+  };
+  if (const LineMap* walls = map.walls(); walls && !walls->empty()) {
+    add(walls->bounds().min);
+    add(walls->bounds().max);
+  } else if (const OccupancyGrid* grid = map.grid()) {
+    add(grid->min_corner());
+    add(grid->max_corner());
+  }
+  for (const auto& layer : layers) {
+    for (const Pose2& p : layer.poses) add(p.translation());
+  }
+  if (!any) b.max = {1.0, 1.0};
+  return b;
+}
+
+}  // namespace
+
+void WriteMapPicture(const MapModel& map, std::span<const TrajectoryLayer> layers,
+                     const std::filesystem::path& path, int max_pixels) {
+  const Bounds bounds = PictureBounds(map, layers);
+  const Eigen::Vector2d size = bounds.max - bounds.min;
+  const double extent = std::max({size.x(), size.y(), 1.0});
+  const double margin = 0.03 * extent;
+  const double metres_per_pixel = (extent + 2 * margin) / max_pixels;
+  WorldCanvas canvas(bounds.min, bounds.max, metres_per_pixel, margin);
+
+  if (const LineMap* walls = map.walls()) {
+    for (const Segment& s : walls->segments()) canvas.DrawSegment(s.a, s.b, {0, 0, 0}, 2);
+  } else if (const OccupancyGrid* grid = map.grid()) {
+    const double cell_px = grid->resolution() / metres_per_pixel;
+    const double radius = std::max(0.5, 0.5 * cell_px);
+    // Free space first, so that walls drawn after it are never painted over.
+    for (const CellState wanted : {CellState::kFree, CellState::kOccupied}) {
+      const Rgb color = wanted == CellState::kOccupied ? Rgb{0, 0, 0} : Rgb{235, 235, 235};
+      for (int y = 0; y < grid->height(); ++y) {
+        for (int x = 0; x < grid->width(); ++x) {
+          if (grid->state(x, y) == wanted) canvas.DrawPoint(grid->CellToWorld(x, y), radius, color);
+        }
+      }
+    }
+  }
+  for (const auto& layer : layers) {
+    std::vector<Eigen::Vector2d> points;
+    points.reserve(layer.poses.size());
+    for (const Pose2& p : layer.poses) points.push_back(p.translation());
+    canvas.DrawPolyline(points, layer.color, 2);
+    if (!layer.poses.empty()) canvas.DrawPose(layer.poses.front(), layer.color, 5.0, 2);
+  }
+  WritePng(canvas.image(), path);
+}
+
+}  // namespace evoslam
