@@ -1,0 +1,40 @@
+#include "common/io/text_fields.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace evoslam {
+namespace {
+
+using ::testing::ElementsAre;
+
+TEST(TextFieldsTest, SplitsOnRunsOfSpacesAndTabs) {
+  std::vector<std::string_view> fields = {"stale"};
+  SplitFields("  FLASER\t3  1.0 2 \r", &fields);
+  EXPECT_THAT(fields, ElementsAre("FLASER", "3", "1.0", "2"));
+  SplitFields("   ", &fields);
+  EXPECT_TRUE(fields.empty());
+}
+
+TEST(TextFieldsTest, ParsesWholeNumbersOnly) {
+  EXPECT_EQ(ParseDouble("976052905.167303"), 976052905.167303);
+  EXPECT_EQ(ParseDouble("-1.5e-3"), -1.5e-3);
+  EXPECT_EQ(ParseDouble("+2.5"), 2.5);
+  EXPECT_FALSE(ParseDouble(""));
+  EXPECT_FALSE(ParseDouble("1.5x"));
+  EXPECT_FALSE(ParseDouble("x"));
+  EXPECT_FALSE(ParseDouble("+-1"));
+  EXPECT_FALSE(ParseDouble("1e999"));
+  EXPECT_TRUE(std::isnan(*ParseDouble("nan")));
+  EXPECT_TRUE(std::isinf(*ParseDouble("inf")));
+  EXPECT_EQ(ParseFloat("1.07"), 1.07F);
+  EXPECT_EQ(ParseCount("180"), 180u);
+  EXPECT_FALSE(ParseCount("-1"));
+  EXPECT_FALSE(ParseCount("1.5"));
+  EXPECT_FALSE(ParseCount("99999999999999999999999"));
+}
+
+}  // namespace
+}  // namespace evoslam

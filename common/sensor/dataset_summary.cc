@@ -1,0 +1,91 @@
+#include "common/sensor/dataset_summary.h"
+
+#include <algorithm>
+#include <iomanip>
+#include <locale>
+#include <numbers>
+#include <span>
+#include <sstream>
+
+namespace evoslam {
+namespace {
+
+constexpr double kDegPerRad = 180.0 / std::numbers::pi;
+
+template <typename Item, typename PoseOf>
+double PathLength(std::span<const Item> items, PoseOf pose_of) {
+  double length = 0.0;
+  for (std::size_t i = 1; i < items.size(); ++i) {
+    length += (pose_of(items[i]).translation() - pose_of(items[i - 1]).translation()).norm();
+  }
+  return length;
+}
+
+template <typename Item>
+void ExtendTimes(std::span<const Item> items, bool* any, double* start, double* end) {
+  for (const Item& item : items) {
+    if (!*any) {
+      *start = *end = item.timestamp;
+      *any = true;
+    }
+    *start = std::min(*start, item.timestamp);
+    *end = std::max(*end, item.timestamp);
+  }
+}
+
+}  // namespace
+
+DatasetSummary Summarize(const Dataset& dataset) {
+  DatasetSummary s;
+  s.scans = dataset.scans.size();
+  s.rear_scans = dataset.rear_scans.size();
+  s.odometry_readings = dataset.odometry.size();
+  if (!dataset.scans.empty()) {
+    s.min_beams = s.max_beams = dataset.scans.front().size();
+    s.angle_increment_deg = dataset.scans.front().angle_increment * kDegPerRad;
+    for (const LaserScan& scan : dataset.scans) {
+      s.min_beams = std::min(s.min_beams, scan.size());
+      s.max_beams = std::max(s.max_beams, scan.size());
+      s.field_of_view_deg = std::max(s.field_of_view_deg, scan.field_of_view() * kDegPerRad);
+      s.max_range = std::max(s.max_range, scan.range_max);
+    }
+  }
+  bool any = false;
+  ExtendTimes(std::span<const LaserScan>(dataset.scans), &any, &s.start_time, &s.end_time);
+  ExtendTimes(std::span<const LaserScan>(dataset.rear_scans), &any, &s.start_time, &s.end_time);
+  ExtendTimes(std::span<const OdometryReading>(dataset.odometry), &any, &s.start_time, &s.end_time);
+  s.duration = s.end_time - s.start_time;
+  // ODOM messages come at the odometry's own rate, often faster than the laser's, so they follow
+  // the path more closely than the odometry stamped on the scans; the scans' are the fallback
+  // for logs without ODOM lines (MIT CSAIL, simulated logs).
+  if (dataset.odometry.size() >= 2) {
+    s.odometry_path_length = PathLength(std::span<const OdometryReading>(dataset.odometry),
+                                        [](const OdometryReading& o) { return o.pose; });
+  } else {
+    s.odometry_path_length = PathLength(std::span<const LaserScan>(dataset.scans),
+                                        [](const LaserScan& scan) { return scan.odometry; });
+  }
+  s.has_ground_truth = dataset.has_ground_truth();
+  return s;
+}
+
+std::string FormatSummary(const DatasetSummary& s) {
+  std::ostringstream out;
+  out.imbue(std::locale::classic());
+  out << std::fixed << std::setprecision(2);
+  out << "scans:             " << s.scans << " (front), " << s.rear_scans << " (rear)\n";
+  out << "odometry readings: " << s.odometry_readings << "\n";
+  out << "beams per scan:    " << s.min_beams;
+  if (s.max_beams != s.min_beams) out << " to " << s.max_beams;
+  out << "\n";
+  out << "field of view:     " << s.field_of_view_deg << " deg, " << std::setprecision(3)
+      << s.angle_increment_deg << " deg between beams\n";
+  out << std::setprecision(2) << "max range:         " << s.max_range << " m\n";
+  out << std::setprecision(3) << "time:              " << s.start_time << " to " << s.end_time
+      << " s (" << std::setprecision(1) << s.duration << " s)\n";
+  out << std::setprecision(2) << "odometry path:     " << s.odometry_path_length << " m\n";
+  out << "ground truth:      " << (s.has_ground_truth ? "yes" : "no") << "\n";
+  return out.str();
+}
+
+}  // namespace evoslam
