@@ -43,9 +43,7 @@ OccupancyGrid GridFromLog(const std::string& path, double resolution, bool lenie
   std::vector<Pose2> poses;
   for (const LaserScan& s : dataset.scans) poses.push_back(s.true_pose.value_or(s.pose));
   spdlog::info("building a {:.3f} m grid from {} scans of {}", resolution, poses.size(), path);
-  OccupancyGrid grid = OccupancyGrid::FromScans(dataset.scans, poses, resolution, 1.0);
-  grid.UpdateDistanceField();
-  return grid;
+  return OccupancyGrid::FromScans(dataset.scans, poses, resolution, 1.0);
 }
 
 void Run(const LocalizeArgs& a) {

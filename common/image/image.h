@@ -14,7 +14,8 @@ struct Rgb {
   bool operator==(const Rgb&) const = default;
 };
 
-// An 8-bit RGB raster, row 0 at the top. Drawing clips to the image.
+// An 8-bit RGB raster, row 0 at the top. Drawing clips to the image. Drawing coordinates are in
+// pixels, pixel (x, y) being the unit square centred on (x, y).
 class Image {
  public:
   Image() = default;
@@ -27,7 +28,9 @@ class Image {
   bool contains(int x, int y) const { return x >= 0 && y >= 0 && x < width_ && y < height_; }
 
   void SetPixel(int x, int y, Rgb color);  // ignored outside the image
+  // Stamps a thickness x thickness square brush along the line; thickness < 1 draws nothing.
   void DrawLine(double x0, double y0, double x1, double y1, Rgb color, int thickness = 1);
+  // Fills the pixels whose centres lie within radius of (cx, cy).
   void DrawDisc(double cx, double cy, double radius, Rgb color);
 
  private:

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "common/grid/grid_image.h"
 #include "common/image/world_canvas.h"
 
 namespace evoslam {
@@ -43,17 +44,7 @@ void WriteMapPicture(const MapModel& map, std::span<const TrajectoryLayer> layer
   if (const LineMap* walls = map.walls()) {
     for (const Segment& s : walls->segments()) canvas.DrawSegment(s.a, s.b, {0, 0, 0}, 2);
   } else if (const OccupancyGrid* grid = map.grid()) {
-    const double cell_px = grid->resolution() / metres_per_pixel;
-    const double radius = std::max(0.5, 0.5 * cell_px);
-    // Free space first, so that walls drawn after it are never painted over.
-    for (const CellState wanted : {CellState::kFree, CellState::kOccupied}) {
-      const Rgb color = wanted == CellState::kOccupied ? Rgb{0, 0, 0} : Rgb{235, 235, 235};
-      for (int y = 0; y < grid->height(); ++y) {
-        for (int x = 0; x < grid->width(); ++x) {
-          if (grid->state(x, y) == wanted) canvas.DrawPoint(grid->CellToWorld(x, y), radius, color);
-        }
-      }
-    }
+    DrawGrid(*grid, canvas);
   }
   for (const auto& layer : layers) {
     std::vector<Eigen::Vector2d> points;

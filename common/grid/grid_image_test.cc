@@ -1,0 +1,74 @@
+#include "common/grid/grid_image.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+namespace evoslam {
+namespace {
+
+OccupancyGrid SmallGrid() {
+  // Row 0 (bottom): occupied, free, unknown; row 1 (top): free, free, occupied.
+  OccupancyGrid grid(0.5, {-1.0, 2.0}, 3, 2);
+  grid.SetCell(0, 0, CellState::kOccupied);
+  grid.SetCell(1, 0, CellState::kFree);
+  grid.SetCell(0, 1, CellState::kFree);
+  grid.SetCell(1, 1, CellState::kFree);
+  grid.SetCell(2, 1, CellState::kOccupied);
+  return grid;
+}
+
+TEST(GridImageTest, RenderColoursCellsWithYUp) {
+  const Image image = RenderGrid(SmallGrid());
+  ASSERT_EQ(image.width(), 3);
+  ASSERT_EQ(image.height(), 2);
+  EXPECT_EQ(image.at(0, 1), kOccupiedCellColor);
+  EXPECT_EQ(image.at(1, 1), kFreeCellColor);
+  EXPECT_EQ(image.at(2, 1), kUnknownCellColor);
+  EXPECT_EQ(image.at(0, 0), kFreeCellColor);
+  EXPECT_EQ(image.at(2, 0), kOccupiedCellColor);
+  EXPECT_NE(kOccupiedCellColor, kFreeCellColor);
+  EXPECT_NE(kUnknownCellColor, kFreeCellColor);
+  EXPECT_NE(kUnknownCellColor, kOccupiedCellColor);
+}
+
+TEST(GridImageTest, WriteGridPngReadsBack) {
+  const std::filesystem::path path =
+      std::filesystem::temp_directory_path() / "evoslam_grid_image_test.png";
+  WriteGridPng(SmallGrid(), path);
+  const Image back = ReadPng(path);
+  std::filesystem::remove(path);
+  const Image expected = RenderGrid(SmallGrid());
+  ASSERT_EQ(back.width(), expected.width());
+  ASSERT_EQ(back.height(), expected.height());
+  for (int y = 0; y < back.height(); ++y) {
+    for (int x = 0; x < back.width(); ++x) EXPECT_EQ(back.at(x, y), expected.at(x, y));
+  }
+}
+
+TEST(GridImageTest, DrawGridPaintsCellsAtCanvasScale) {
+  const OccupancyGrid grid = SmallGrid();
+  // Four pixels per cell, one cell of margin around the grid.
+  WorldCanvas canvas(grid.min_corner(), grid.max_corner(), 0.125, 0.5, {1, 2, 3});
+  DrawGrid(grid, canvas);
+  const Image& image = canvas.image();
+  ASSERT_EQ(image.width(), 20);
+  ASSERT_EQ(image.height(), 16);
+  for (int py = 0; py < image.height(); ++py) {
+    for (int px = 0; px < image.width(); ++px) {
+      const int cx = px / 4 - 1;
+      const int cy = (image.height() - 1 - py) / 4 - 1;
+      Rgb expected{1, 2, 3};
+      if (grid.Contains(cx, cy)) {
+        expected = grid.state(cx, cy) == CellState::kOccupied ? kOccupiedCellColor
+                   : grid.state(cx, cy) == CellState::kFree   ? kFreeCellColor
+                                                              : kUnknownCellColor;
+      }
+      EXPECT_EQ(image.at(px, py), expected) << px << "," << py;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace evoslam

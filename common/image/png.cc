@@ -1,0 +1,92 @@
+// PNG I/O through libpng's simplified API, which reports failures through a message in the
+// png_image rather than through longjmp, so no C++ object ever lives across a setjmp.
+#include <png.h>
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "common/image/image.h"
+#include "common/util/error.h"
+
+namespace evoslam {
+namespace {
+
+// Larger images are rejected before allocation, so a corrupt header cannot exhaust memory.
+constexpr std::uint64_t kMaxPixels = std::uint64_t{1} << 28;
+
+// Releases libpng's read state however the read ends; png_image_free is a no-op once
+// png_image_finish_read has already released it.
+class PngImage {
+ public:
+  PngImage() {
+    image_.version = PNG_IMAGE_VERSION;
+    image_.opaque = nullptr;
+  }
+  ~PngImage() { png_image_free(&image_); }
+  PngImage(const PngImage&) = delete;
+  PngImage& operator=(const PngImage&) = delete;
+
+  png_image* get() { return &image_; }
+  std::string message() const { return image_.message; }
+
+ private:
+  png_image image_{};
+};
+
+}  // namespace
+
+void WritePng(const Image& image, const std::filesystem::path& path) {
+  if (image.width() == 0 || image.height() == 0) {
+    throw Error(path.string() + ": cannot write an empty (" + std::to_string(image.width()) +
+                " x " + std::to_string(image.height()) + ") image as PNG");
+  }
+  std::vector<std::uint8_t> buffer;
+  buffer.reserve(static_cast<std::size_t>(image.width()) * image.height() * 3);
+  for (int y = 0; y < image.height(); ++y) {
+    for (int x = 0; x < image.width(); ++x) {
+      const Rgb& p = image.at(x, y);
+      buffer.insert(buffer.end(), {p.r, p.g, p.b});
+    }
+  }
+  PngImage png;
+  png.get()->width = static_cast<png_uint_32>(image.width());
+  png.get()->height = static_cast<png_uint_32>(image.height());
+  png.get()->format = PNG_FORMAT_RGB;
+  if (png_image_write_to_file(png.get(), path.c_str(), 0, buffer.data(), 0, nullptr) == 0) {
+    throw Error(path.string() + ": cannot write PNG: " + png.message());
+  }
+}
+
+Image ReadPng(const std::filesystem::path& path) {
+  PngImage png;
+  if (png_image_begin_read_from_file(png.get(), path.c_str()) == 0) {
+    throw InputError(path.string(), 0, "cannot read PNG: " + png.message());
+  }
+  const std::uint64_t width = png.get()->width;
+  const std::uint64_t height = png.get()->height;
+  if (width * height > kMaxPixels || width > std::numeric_limits<int>::max() ||
+      height > std::numeric_limits<int>::max()) {
+    throw InputError(path.string(), 0,
+                     "PNG of " + std::to_string(width) + " x " + std::to_string(height) +
+                         " pixels is larger than the supported " + std::to_string(kMaxPixels));
+  }
+  png.get()->format = PNG_FORMAT_RGB;
+  std::vector<std::uint8_t> buffer(width * height * 3);
+  // Transparent pixels are composited onto white, the colour of an empty canvas.
+  const png_color white{255, 255, 255};
+  if (png_image_finish_read(png.get(), &white, buffer.data(), 0, nullptr) == 0) {
+    throw InputError(path.string(), 0, "cannot read PNG: " + png.message());
+  }
+  Image image(static_cast<int>(width), static_cast<int>(height));
+  std::size_t i = 0;
+  for (int y = 0; y < image.height(); ++y) {
+    for (int x = 0; x < image.width(); ++x, i += 3) {
+      image.at(x, y) = {buffer[i], buffer[i + 1], buffer[i + 2]};
+    }
+  }
+  return image;
+}
+
+}  // namespace evoslam
