@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <span>
 #include <vector>
@@ -51,6 +52,17 @@ class LineMap {
   int rows_ = 0;
   std::vector<std::uint32_t> cell_start_;  // CSR offsets, size cols_*rows_+1
   std::vector<std::uint32_t> cell_items_;  // segment indices per cell
+
+  // Each cell entry's wall as start point and direction (b - a), stored beside cell_items_ so
+  // that a ray's inner loop reads one contiguous run of memory per cell.
+  struct CellWall {
+    double ax;
+    double ay;
+    double ex;
+    double ey;
+  };
+  std::vector<CellWall> cell_walls_;
+  double inv_cell_size_ = 2.0;
 };
 
 // Text format: one wall per line, "x1 y1 x2 y2" in metres; '#' starts a comment; blank lines
