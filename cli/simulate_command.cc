@@ -1,0 +1,70 @@
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <string>
+
+#include "cli/commands.h"
+#include "common/mapping/line_map.h"
+#include "common/sim/simulator.h"
+#include "common/sim/world.h"
+#include "common/util/error.h"
+
+namespace evoslam::cli {
+namespace {
+
+struct SimulateArgs {
+  std::string world = "s-corridor", world_file, out;
+  SimulationOptions options;
+  bool no_odometry_noise = false;
+};
+
+void Run(SimulateArgs a) {
+  World world = a.world_file.empty() ? BuiltinWorld(a.world)
+                                     : WorldFromLineMap(ReadLineMap(a.world_file), a.world_file);
+  if (a.no_odometry_noise) a.options.noise.odometry = {0.0, 0.0, 0.0, 0.0};
+  const Dataset log = Simulate(world, a.options);
+  WriteSimulation(log, world, a.out);
+  std::printf("simulated %zu scans of %s (%zu walls) into %s/{log.clf,world.lines,truth.txt}\n",
+              log.scans.size(), world.name.c_str(), world.map.size(), a.out.c_str());
+}
+
+}  // namespace
+
+void AddSimulateCommand(CLI::App& app) {
+  std::string names;
+  for (const auto& n : BuiltinWorldNames()) names += (names.empty() ? "" : ", ") + n;
+  auto* cmd = app.add_subcommand("simulate", "Simulate a laser log in a built-in or given world");
+  auto a = std::make_shared<SimulateArgs>();
+  SimulationOptions& o = a->options;
+  cmd->add_option("--world", a->world, "built-in world: " + names);
+  cmd->add_option("--world-file", a->world_file,
+                  "any LineMap file as world (a route through its free space is chosen)");
+  cmd->add_option("--beams", o.laser.beams, "laser beams")->check(CLI::Range(2, 100000));
+  cmd->add_option("--fov", o.laser.field_of_view_deg, "field of view, degrees")
+      ->check(CLI::Range(1.0, 360.0));
+  cmd->add_option("--max-range", o.laser.max_range, "laser range, m")->check(CLI::PositiveNumber);
+  cmd->add_option("--noise-uniform", o.noise.uniform_bandwidth,
+                  "additive uniform noise: bandwidth (max - min), m")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--noise-gaussian", o.noise.gaussian_sigma, "additive Gaussian noise sigma, m")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--quantization", o.noise.quantization, "range quantization step, m")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--pedestrians", o.noise.pedestrians, "people walking about, occluding beams")
+      ->check(CLI::Range(0, 1000));
+  cmd->add_option("--odometry-translation-noise", o.noise.odometry.translation_sigma,
+                  "relative sigma per increment")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--odometry-rotation-noise", o.noise.odometry.rotation_sigma,
+                  "relative sigma per increment")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--perfect-odometry", a->no_odometry_noise, "odometry equal to the true motion");
+  cmd->add_option("--step", o.step, "metres between scans (default: the world's)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--max-scans", o.max_scans, "stop after N scans (0: whole route)");
+  cmd->add_option("--seed", o.seed, "random seed");
+  cmd->add_option("--out", a->out, "output directory")->required();
+  cmd->callback([a] { Run(*a); });
+}
+
+}  // namespace evoslam::cli
