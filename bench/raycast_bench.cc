@@ -1,0 +1,97 @@
+// Ray casting: single rays through the LineMap index and the occupancy grid, and whole fans
+// through the temporary-map sweep the estimator uses.
+#include <benchmark/benchmark.h>
+
+#include <numbers>
+
+#include "common/grid/occupancy_grid.h"
+#include "common/localization/segment_renderer.h"
+#include "common/sim/world.h"
+#include "common/util/random.h"
+
+namespace evoslam {
+namespace {
+
+// Ray origins spread over the route, where a robot would be.
+std::vector<Eigen::Vector2d> Origins(const World& world, std::size_t count) {
+  std::vector<Eigen::Vector2d> origins;
+  Rng rng(7);
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::size_t leg = rng.UniformIndex(world.waypoints.size() - 1);
+    const double s = rng.Uniform();
+    origins.push_back((1 - s) * world.waypoints[leg] + s * world.waypoints[leg + 1]);
+  }
+  return origins;
+}
+
+void BM_LineMapCastRay(benchmark::State& state, const char* name) {
+  const World world = BuiltinWorld(name);
+  const auto origins = Origins(world, 1024);
+  std::size_t i = 0;
+  double angle = 0.0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(world.map.CastRay(origins[i & 1023], angle, 8.0));
+    ++i;
+    angle += 0.377;
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()));
+  state.counters["walls"] = static_cast<double>(world.map.size());
+}
+BENCHMARK_CAPTURE(BM_LineMapCastRay, office_boxes, "office-boxes");
+BENCHMARK_CAPTURE(BM_LineMapCastRay, office_cluster, "office-cluster");
+
+// A 5 cm grid rasterised from the office cluster's walls.
+OccupancyGrid ClusterGrid(const World& world) {
+  const Bounds& b = world.map.bounds();
+  const double res = 0.05;
+  OccupancyGrid grid(res, b.min - Eigen::Vector2d(1, 1),
+                     static_cast<int>((b.max.x() - b.min.x() + 2) / res),
+                     static_cast<int>((b.max.y() - b.min.y() + 2) / res));
+  for (const Segment& s : world.map.segments()) {
+    const int steps = static_cast<int>((s.b - s.a).norm() / (0.25 * res)) + 1;
+    for (int k = 0; k <= steps; ++k) {
+      const Eigen::Vector2d p = s.a + (s.b - s.a) * (static_cast<double>(k) / steps);
+      if (const auto c = grid.WorldToCell(p)) grid.SetCell(c->x(), c->y(), CellState::kOccupied);
+    }
+  }
+  grid.UpdateDistanceField();
+  return grid;
+}
+
+void BM_GridCastRay(benchmark::State& state) {
+  const World world = BuiltinWorld("office-cluster");
+  const OccupancyGrid grid = ClusterGrid(world);
+  const auto origins = Origins(world, 1024);
+  std::size_t i = 0;
+  double angle = 0.0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(grid.CastRay(origins[i & 1023], angle, 8.0));
+    ++i;
+    angle += 0.377;
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()));
+}
+BENCHMARK(BM_GridCastRay);
+
+// One fan as the 2D estimator renders it: 481 rays (180 degrees of beams plus +-30 degrees of
+// heading at 0.5 degrees), items = rays.
+void BM_SegmentRendererFan(benchmark::State& state, const char* name) {
+  const World world = BuiltinWorld(name);
+  const auto origins = Origins(world, 64);
+  std::vector<SegmentRenderer> renderers;
+  for (const auto& o : origins) renderers.emplace_back(TemporaryMap(world.map, o, 8.5));
+  const RayFan fan(-2.0, 0.5 * std::numbers::pi / 180, 481);
+  std::vector<float> rays(fan.size());
+  std::size_t i = 0;
+  for (auto _ : state) {
+    renderers[i & 63].Render(origins[i & 63], fan, 8.0f, rays);
+    benchmark::DoNotOptimize(rays.data());
+    ++i;
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * fan.size()));
+}
+BENCHMARK_CAPTURE(BM_SegmentRendererFan, office_boxes, "office-boxes");
+BENCHMARK_CAPTURE(BM_SegmentRendererFan, office_cluster, "office-cluster");
+
+}  // namespace
+}  // namespace evoslam
