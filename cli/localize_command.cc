@@ -31,6 +31,7 @@ struct LocalizeArgs {
   std::string fitness = "f3", estimator = "2d", optimizer = "de", strategy = "rand1exp";
   std::size_t pop = 25, gen = 25, max_scans = 0;
   double f = 0.6, cr = 0.9, window = 0.6, heading_window = 30.0, heading_step = 0.5;
+  PsoParams pso;
   double exhaustive_step = 0.01, max_range = 0.0, grid_resolution = 0.05;
   std::uint64_t seed = 1;
   bool use_odometry = false, lenient = false;
@@ -62,6 +63,10 @@ void Run(const LocalizeArgs& a) {
   e.de.generations = e.pso.generations = a.gen;
   e.de.f = a.f;
   e.de.cr = a.cr;
+  e.pso.inertia = a.pso.inertia;
+  e.pso.c1 = a.pso.c1;
+  e.pso.c2 = a.pso.c2;
+  e.pso.vmax_fraction = a.pso.vmax_fraction;
   e.window = a.window;
   e.heading_half_window = a.heading_window * kDeg;
   e.heading_step = a.heading_step * kDeg;
@@ -120,6 +125,10 @@ void Run(const LocalizeArgs& a) {
   p.set_generations(static_cast<std::uint32_t>(a.gen));
   p.set_f(a.f);
   p.set_cr(a.cr);
+  p.set_pso_inertia(a.pso.inertia);
+  p.set_pso_c1(a.pso.c1);
+  p.set_pso_c2(a.pso.c2);
+  p.set_pso_vmax_fraction(a.pso.vmax_fraction);
   p.set_window_m(a.window);
   p.set_heading_window_deg(a.heading_window);
   p.set_heading_step_deg(a.heading_step);
@@ -201,6 +210,14 @@ void AddLocalizeCommand(CLI::App& app) {
   cmd->add_option("--gen", a->gen, "generations")->check(CLI::Range(0, 1000000));
   cmd->add_option("--F", a->f, "DE differential weight")->check(CLI::Range(0.0, 2.0));
   cmd->add_option("--CR", a->cr, "DE crossover rate")->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--w", a->pso.inertia, "PSO inertia weight")->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--c1", a->pso.c1, "PSO pull towards each particle's best")
+      ->check(CLI::Range(0.0, 4.0));
+  cmd->add_option("--c2", a->pso.c2, "PSO pull towards the swarm's best")
+      ->check(CLI::Range(0.0, 4.0));
+  cmd->add_option("--vmax", a->pso.vmax_fraction,
+                  "PSO velocity clamp per coordinate, as a fraction of the window")
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--window", a->window, "side of the square search window, m")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--heading-window", a->heading_window, "heading search half-width, degrees")

@@ -51,6 +51,9 @@ void ValidateEstimatorParams(const EstimatorParams& params) {
   if (params.optimizer == OptimizerKind::kPso && params.pso.particles < 2) {
     throw Error("PSO needs at least 2 particles");
   }
+  if (params.optimizer == OptimizerKind::kPso && !(params.pso.vmax_fraction > 0.0)) {
+    throw Error("PSO velocity clamp must be positive, or particles never move");
+  }
 }
 
 namespace {

@@ -84,6 +84,11 @@ TEST(EstimatorParamsTest, RejectsBadValues) {
   p = {};
   p.heading_half_window = 4;
   EXPECT_THROW(ValidateEstimatorParams(p), Error);
+  p = {};
+  p.optimizer = OptimizerKind::kPso;
+  EXPECT_NO_THROW(ValidateEstimatorParams(p));
+  p.pso.vmax_fraction = 0;
+  EXPECT_THROW(ValidateEstimatorParams(p), Error);
   EXPECT_THROW(ParseOptimizerKind("sga"), Error);
   EXPECT_THROW(ParseEstimatorKind("4d"), Error);
 }
