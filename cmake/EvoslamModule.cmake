@@ -5,6 +5,9 @@
 # -Wrestrict is off: GCC 12 reports false positives on std::string concatenation at -O3
 # (GCC bug 105651), which would fail the -Werror build on correct code.
 set(EVOSLAM_WARNINGS -Wall -Wextra -Wpedantic -Werror -Wno-restrict)
+# ctest runs test binaries side by side; OpenMP threads that spin while waiting would then steal
+# the cores the other binary's threads need and slow both by an order of magnitude.
+set(EVOSLAM_TEST_ENVIRONMENT "OMP_WAIT_POLICY=PASSIVE")
 set(EVOSLAM_DATA_DIR "${CMAKE_SOURCE_DIR}/../shared/data" CACHE PATH
     "Folder of the real laser logs; tests that need it skip when it is absent")
 
@@ -35,6 +38,7 @@ function(evoslam_module NAME)
       EVOSLAM_DATA_DIR="${EVOSLAM_DATA_DIR}"
       EVOSLAM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
     target_link_libraries(${target}_tests PRIVATE ${target} ${ARG_TEST_DEPS} GTest::gtest GTest::gtest_main GTest::gmock)
-    gtest_discover_tests(${target}_tests DISCOVERY_TIMEOUT 60)
+    gtest_discover_tests(${target}_tests DISCOVERY_TIMEOUT 60
+      PROPERTIES ENVIRONMENT ${EVOSLAM_TEST_ENVIRONMENT})
   endif()
 endfunction()

@@ -1,0 +1,105 @@
+// Accuracy on data with known ground truth: the L1/L2 comparative study's environments A and B,
+// simulated, and the real Intel and ACES logs' relations.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <string>
+
+#include "common/eval/trajectory_errors.h"
+#include "common/io/carmen_reader.h"
+#include "common/io/relations.h"
+#include "common/localization/localizer.h"
+#include "common/sim/simulator.h"
+#include "common/sim/world.h"
+
+namespace evoslam {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180;
+
+struct StudyRun {
+  std::size_t scans = 0;
+  AbsoluteErrors errors;
+};
+
+// DE/rand/1/exp on F3, POP 25, GEN 25, 60 x 60 cm window: the study's settings.
+StudyRun LocalizeInWorld(const std::string& world_name, double bandwidth, std::uint64_t seed) {
+  const World world = BuiltinWorld(world_name);
+  SimulationOptions sim;
+  sim.noise.uniform_bandwidth = bandwidth;
+  sim.seed = seed;
+  const Dataset log = Simulate(world, sim);
+  LocalizeOptions options;
+  options.seed = seed;
+  const LocalizeResult result = Localize(MapModel(world.map), log, options);
+  std::vector<StampedPose> truth;
+  for (const LaserScan& s : log.scans) truth.push_back({s.timestamp, *s.true_pose});
+  return {log.scans.size(), ComputeAbsoluteErrors(result.trajectory, truth)};
+}
+
+class StudyEnvironmentTest : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(StudyEnvironmentTest, CentimetreAccuracyAt20cmNoise) {
+  const StudyRun run = LocalizeInWorld(GetParam(), 0.20, 1);
+  EXPECT_GE(run.scans, 200u);
+  EXPECT_EQ(run.errors.poses, run.scans);
+  EXPECT_LE(run.errors.rms_x, 0.02);
+  EXPECT_LE(run.errors.rms_y, 0.02);
+  EXPECT_LE(run.errors.rms_theta, 0.5 * kDeg);
+  RecordProperty("rms_x_cm", std::to_string(100 * run.errors.rms_x));
+  RecordProperty("rms_y_cm", std::to_string(100 * run.errors.rms_y));
+  RecordProperty("rms_theta_deg", std::to_string(run.errors.rms_theta / kDeg));
+}
+
+TEST_P(StudyEnvironmentTest, KeepsTrackAt300cmNoise) {
+  const StudyRun run = LocalizeInWorld(GetParam(), 3.0, 2);
+  EXPECT_LE(run.errors.rms_translation, 0.15);
+  EXPECT_LE(run.errors.max_translation, 0.6);
+}
+
+// Environment A: the s-shaped corridor; B: the room with many static objects.
+INSTANTIATE_TEST_SUITE_P(EnvironmentsAB, StudyEnvironmentTest,
+                         ::testing::Values("s-corridor", "static-objects"), [](const auto& info) {
+                           std::string name = info.param;
+                           std::erase(name, '-');
+                           return name;
+                         });
+
+// The relation metric on raw odometry reproduces the figures published with the data.
+struct OdometryCase {
+  const char* name;
+  const char* log;
+  const char* relations;
+  double mean;
+  double std;
+};
+
+class OdometryRelationTest : public ::testing::TestWithParam<OdometryCase> {};
+
+TEST_P(OdometryRelationTest, MatchesPublishedOdometryError) {
+  const OdometryCase& c = GetParam();
+  const std::filesystem::path dir(EVOSLAM_DATA_DIR);
+  if (!std::filesystem::exists(dir / c.log) || !std::filesystem::exists(dir / c.relations)) {
+    GTEST_SKIP() << "real data absent from " << dir;
+  }
+  const Dataset log = ReadCarmen(dir / c.log);
+  std::vector<StampedPose> odometry;
+  for (const LaserScan& s : log.scans) odometry.push_back({s.timestamp, s.odometry});
+  const auto relations = ReadRelations(dir / c.relations);
+  const RelationErrors e = ComputeRelationErrors(odometry, relations);
+  EXPECT_EQ(e.skipped, 0u);
+  EXPECT_EQ(e.relations, relations.size());
+  EXPECT_NEAR(e.translation_mean, c.mean, 0.01);
+  EXPECT_NEAR(e.translation_std, c.std, 0.01);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    IntelAndAces, OdometryRelationTest,
+    ::testing::Values(OdometryCase{"intel", "intel.clf.bz2", "intel.relations", 7.37, 14.46},
+                      OdometryCase{"aces", "aces.clf.bz2", "aces.relations", 0.56, 2.72}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+}  // namespace
+}  // namespace evoslam

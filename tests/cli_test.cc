@@ -1,0 +1,126 @@
+// The evoslam command line end to end: outputs, exit codes and error messages.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "common/io/trajectory_io.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int status = 0;
+  std::string output;  // stdout and stderr
+};
+
+Result RunCli(const std::string& args) {
+  const std::string command = std::string(EVOSLAM_CLI) + " " + args + " 2>&1";
+  Result r;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return {-1, "popen failed"};
+  std::array<char, 4096> buffer;
+  while (std::fgets(buffer.data(), buffer.size(), pipe)) r.output += buffer.data();
+  const int raw = pclose(pipe);
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return r;
+}
+
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("evoslam_cli_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string Path(const std::string& name) const { return (dir_ / name).string(); }
+
+  fs::path dir_;
+};
+
+TEST_F(CliTest, SimulateThenLocalizeWritesEveryOutput) {
+  const Result sim =
+      RunCli("simulate --world s-corridor --noise-uniform 0.2 --max-scans 40 --seed 3 --out " +
+             Path("sim"));
+  ASSERT_EQ(sim.status, 0) << sim.output;
+  for (const char* f : {"log.clf", "world.lines", "truth.txt"})
+    EXPECT_TRUE(fs::exists(dir_ / "sim" / f)) << f;
+
+  const Result loc = RunCli("localize --map " + Path("sim/world.lines") + " --log " +
+                            Path("sim/log.clf") + " --seed 3 --out " + Path("run"));
+  ASSERT_EQ(loc.status, 0) << loc.output;
+  for (const char* f :
+       {"trajectory.txt", "trajectory.tum", "report.json", "summary.txt", "map.png"}) {
+    EXPECT_TRUE(fs::exists(dir_ / "run" / f)) << f;
+  }
+  EXPECT_NE(loc.output.find("RMS error vs ground truth"), std::string::npos) << loc.output;
+  const auto trajectory = evoslam::ReadTrajectory(dir_ / "run" / "trajectory.txt");
+  EXPECT_EQ(trajectory.size(), 40u);
+  std::ifstream report(dir_ / "run" / "report.json");
+  std::stringstream json;
+  json << report.rdbuf();
+  EXPECT_NE(json.str().find("\"absolute_errors\""), std::string::npos);
+  EXPECT_NE(json.str().find("\"scans\": 40"), std::string::npos) << json.str();
+
+  // eval agrees the trajectory is accurate against the log's ground truth.
+  const Result eval =
+      RunCli("eval " + Path("run/trajectory.txt") + " --truth " + Path("sim/log.clf"));
+  ASSERT_EQ(eval.status, 0) << eval.output;
+  EXPECT_NE(eval.output.find("absolute: 40 poses"), std::string::npos) << eval.output;
+
+  // Same seed, same trajectory, byte for byte.
+  ASSERT_EQ(RunCli("localize --map " + Path("sim/world.lines") + " --log " + Path("sim/log.clf") +
+                   " --seed 3 --threads 1 --out " + Path("again"))
+                .status,
+            0);
+  std::ifstream a(dir_ / "run" / "trajectory.txt"), b(dir_ / "again" / "trajectory.txt");
+  std::stringstream sa, sb;
+  sa << a.rdbuf();
+  sb << b.rdbuf();
+  EXPECT_EQ(sa.str(), sb.str());
+}
+
+TEST_F(CliTest, MissingFileIsAClearError) {
+  const Result r = RunCli("info " + Path("nope.clf"));
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("nope.clf"), std::string::npos) << r.output;
+}
+
+TEST_F(CliTest, MalformedLogNamesFileAndLine) {
+  std::ofstream(Path("bad.clf"))
+      << "# header\nODOM 0 0 0 0 0 0 1.0 nohost 0\nFLASER 3 1.0 2.0 x 0 0 0 0 0 0 1.0 nohost 0\n";
+  const Result r = RunCli("info " + Path("bad.clf"));
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("bad.clf:3"), std::string::npos) << r.output;
+  const Result lenient = RunCli("info --lenient " + Path("bad.clf"));
+  EXPECT_EQ(lenient.status, 0) << lenient.output;
+  EXPECT_NE(lenient.output.find("skipped 1"), std::string::npos) << lenient.output;
+}
+
+TEST_F(CliTest, BadFlagsAreRefused) {
+  EXPECT_NE(RunCli("localize --map m --log l --out o --optimizer sga").status, 0);
+  EXPECT_NE(RunCli("localize --map m --log l --out o --CR 1.5").status, 0);
+  EXPECT_NE(RunCli("simulate --world atlantis --out " + Path("x")).status, 0);
+  const Result start = RunCli("localize --map m --log l --out o --start 1,2");
+  EXPECT_NE(start.status, 0);
+  EXPECT_EQ(RunCli("frobnicate").status != 0, true);
+}
+
+TEST_F(CliTest, InfoDescribesTheIntelLog) {
+  const fs::path log = fs::path(EVOSLAM_DATA_DIR) / "intel.clf.bz2";
+  if (!fs::exists(log)) GTEST_SKIP() << "real data absent: " << log;
+  const Result r = RunCli("info " + log.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("13631"), std::string::npos) << r.output;
+}
+
+}  // namespace
