@@ -48,7 +48,8 @@ void BM_F3Candidates(benchmark::State& state) {
   Rng rng(3);
   Eigen::MatrixXd batch(2, 25);
   for (Eigen::Index i = 0; i < 25; ++i) {
-    batch.col(i) = center.translation() + Eigen::Vector2d(rng.Uniform(-0.3, 0.3), rng.Uniform(-0.3, 0.3));
+    batch.col(i) =
+        center.translation() + Eigen::Vector2d(rng.Uniform(-0.3, 0.3), rng.Uniform(-0.3, 0.3));
   }
   std::vector<double> fitness(25);
   omp_set_num_threads(static_cast<int>(state.range(0)));

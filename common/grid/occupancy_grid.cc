@@ -355,11 +355,17 @@ void OccupancyGrid::UpdateDistanceField() {
 }
 
 double OccupancyGrid::CastRay(const Eigen::Vector2d& origin, double angle, double max_range) const {
-  if (!(max_range > 0.0) || !origin.allFinite() || !std::isfinite(angle)) return max_range;
+  if (!std::isfinite(angle)) return max_range;
+  return CastRay(origin, Eigen::Vector2d(std::cos(angle), std::sin(angle)), max_range);
+}
+
+double OccupancyGrid::CastRay(const Eigen::Vector2d& origin, const Eigen::Vector2d& direction,
+                              double max_range) const {
+  if (!(max_range > 0.0) || !origin.allFinite() || !direction.allFinite()) return max_range;
   const double ox = (origin.x() - origin_.x()) / resolution_;
   const double oy = (origin.y() - origin_.y()) / resolution_;
-  const double dx = std::cos(angle);
-  const double dy = std::sin(angle);
+  const double dx = direction.x();
+  const double dy = direction.y();
   const double range = max_range / resolution_;
   const double t =
       has_distance_field() ? Cast<true>(ox, oy, dx, dy, range) : Cast<false>(ox, oy, dx, dy, range);

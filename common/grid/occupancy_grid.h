@@ -98,6 +98,10 @@ class OccupancyGrid {
   // exactly a cell corner or runs exactly along a cell edge may be counted on either side.
   // Returns max_range unchanged when origin or angle is not finite or max_range is not positive.
   double CastRay(const Eigen::Vector2d& origin, double angle, double max_range) const;
+  // The same along a unit direction, for callers that keep directions and so skip the sine and
+  // cosine.
+  double CastRay(const Eigen::Vector2d& origin, const Eigen::Vector2d& direction,
+                 double max_range) const;
 
  private:
   // Units of clearance_ (see there).

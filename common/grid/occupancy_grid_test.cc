@@ -467,6 +467,20 @@ TEST(OccupancyGridTest, CastRayHitsWallAtAnalyticDistance) {
   EXPECT_DOUBLE_EQ(column.CastRay(origin, 0.0, 3.0), 3.0);
 }
 
+TEST(OccupancyGridTest, DirectionCastEqualsAngleCast) {
+  OccupancyGrid grid(0.1, {0.0, 0.0}, 50, 40);
+  for (int x = 10; x < 40; ++x) grid.SetCell(x, 30, CellState::kOccupied);
+  for (int y = 5; y < 30; ++y) grid.SetCell(35, y, CellState::kOccupied);
+  grid.UpdateDistanceField();
+  const Eigen::Vector2d origin(1.2, 1.7);
+  for (double angle = -3.1; angle < 3.1; angle += 0.013) {
+    const Eigen::Vector2d d(std::cos(angle), std::sin(angle));
+    ASSERT_EQ(grid.CastRay(origin, d, 6.0), grid.CastRay(origin, angle, 6.0)) << angle;
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(grid.CastRay(origin, Eigen::Vector2d(nan, 0.0), 6.0), 6.0);
+}
+
 TEST(OccupancyGridTest, CastRayEdgeCases) {
   OccupancyGrid grid(0.1, {0.0, 0.0}, 10, 10);
   grid.SetCell(5, 5, CellState::kOccupied);

@@ -7,8 +7,8 @@ namespace evoslam {
 void GridRenderer::Render(const Eigen::Vector2d& origin, const RayFan& fan, float max_range,
                           std::span<float> ranges) const {
   for (std::size_t i = 0; i < fan.size(); ++i) {
-    const double angle = fan.first_angle + static_cast<double>(i) * fan.step;
-    const double r = grid_.CastRay(origin, angle, max_range);
+    const Eigen::Vector2d direction(fan.dx[i], fan.dy[i]);
+    const double r = grid_.CastRay(origin, direction, max_range);
     ranges[i] = std::min(static_cast<float>(r), max_range);
   }
 }

@@ -165,9 +165,14 @@ LineMap::LineMap(std::vector<Segment> segments, double cell_size)
 }
 
 double LineMap::CastRay(const Eigen::Vector2d& origin, double angle, double max_range) const {
+  return CastRay(origin, Eigen::Vector2d(std::cos(angle), std::sin(angle)), max_range);
+}
+
+double LineMap::CastRay(const Eigen::Vector2d& origin, const Eigen::Vector2d& direction,
+                        double max_range) const {
   if (segments_.empty() || !(max_range > 0.0)) return max_range;
-  const double dx = std::cos(angle);
-  const double dy = std::sin(angle);
+  const double dx = direction.x();
+  const double dy = direction.y();
   const double ox = origin.x();
   const double oy = origin.y();
   const double gx0 = grid_origin_.x();

@@ -38,6 +38,10 @@ class LineMap {
   // Distance from origin along the ray at `angle` (radians, world frame) to the first wall, or
   // max_range when no wall lies within max_range.
   double CastRay(const Eigen::Vector2d& origin, double angle, double max_range) const;
+  // The same along a unit direction, for callers that keep directions and so skip the sine and
+  // cosine.
+  double CastRay(const Eigen::Vector2d& origin, const Eigen::Vector2d& direction,
+                 double max_range) const;
 
   // Indices (ascending) of the walls that come within `radius` of `center`.
   std::vector<std::size_t> SegmentsNear(const Eigen::Vector2d& center, double radius) const;

@@ -169,6 +169,19 @@ TEST(LineMapTest, AgreesWithBruteForceOnRandomMaps) {
   }
 }
 
+TEST(LineMapTest, DirectionCastEqualsAngleCast) {
+  std::mt19937_64 gen(5);
+  const LineMap map(RandomWalls(gen, 100, 20.0, 3.0));
+  std::uniform_real_distribution<double> pos(0.0, 20.0);
+  std::uniform_real_distribution<double> ang(-pi, pi);
+  for (int i = 0; i < 1000; ++i) {
+    const Eigen::Vector2d o(pos(gen), pos(gen));
+    const double a = ang(gen);
+    const Eigen::Vector2d d(std::cos(a), std::sin(a));
+    ASSERT_EQ(map.CastRay(o, d, 15.0), map.CastRay(o, a, 15.0)) << o.transpose() << " " << a;
+  }
+}
+
 TEST(LineMapTest, AgreesWithBruteForceAlongCellBorders) {
   // Walls and rays on the index's cell borders, where hits fall exactly between cells.
   std::mt19937_64 gen(7);
