@@ -55,7 +55,7 @@ void AddEvalCommand(CLI::App& app) {
   rel->excludes(truth);
   cmd->callback([args] {
     if (args->relations.empty() && args->truth.empty()) {
-      throw Error("eval needs --relations FILE or --truth FILE_OR_LOG");
+      throw CLI::ValidationError("eval needs --relations FILE or --truth FILE_OR_LOG");
     }
     const auto trajectory = LoadTrajectory(args->trajectory, false);
     std::vector<Relation> relations;

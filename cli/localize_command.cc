@@ -47,12 +47,13 @@ OccupancyGrid GridFromLog(const std::string& path, double resolution, bool lenie
   return OccupancyGrid::FromScans(dataset.scans, poses, resolution, 1.0);
 }
 
-void Run(const LocalizeArgs& a) {
+// The job's options from the command line. Values the parser could not check alone (the DE
+// strategy, the start pose, parameters that only make sense together) are refused here as
+// command-line errors, before any file is read.
+LocalizeOptions OptionsFrom(const LocalizeArgs& a) try {
   if (a.map.empty() == a.map_from_log.empty()) {
     throw Error("localize needs exactly one of --map MAP and --map-from-log LOG");
   }
-  if (a.threads > 0) omp_set_num_threads(a.threads);
-
   LocalizeOptions options;
   EstimatorParams& e = options.estimator;
   e.fitness.kind = ParseFitnessKind(a.fitness);
@@ -77,6 +78,14 @@ void Run(const LocalizeArgs& a) {
   options.max_range = a.max_range;
   options.max_scans = a.max_scans;
   if (!a.start.empty()) options.start = ParsePose(a.start, "--start");
+  return options;
+} catch (const Error& e) {
+  throw CLI::ValidationError(e.what());
+}
+
+void Run(const LocalizeArgs& a) {
+  const LocalizeOptions options = OptionsFrom(a);
+  if (a.threads > 0) omp_set_num_threads(a.threads);
 
   const std::filesystem::path out(a.out);
   std::filesystem::create_directories(out);

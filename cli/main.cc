@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 
 #include "cli/commands.h"
 #include "common/util/error.h"
@@ -28,16 +29,21 @@ int main(int argc, char** argv) {
   evoslam::cli::AddLocalizeCommand(app);
   evoslam::cli::AddEvalCommand(app);
 
+  // Exit status: 0 done, 1 bad input (files, data), 2 bad command line, 70 (EX_SOFTWARE) a bug.
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version come through here too, with CLI11's status 0.
+    return app.exit(e) == 0 ? 0 : 2;
   } catch (const evoslam::Error& e) {
+    std::fprintf(stderr, "evoslam: error: %s\n", e.what());
+    return 1;
+  } catch (const std::filesystem::filesystem_error& e) {
     std::fprintf(stderr, "evoslam: error: %s\n", e.what());
     return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "evoslam: internal error: %s\n", e.what());
-    return 2;
+    return 70;
   }
   return 0;
 }

@@ -36,9 +36,11 @@ void AddSimulateCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("simulate", "Simulate a laser log in a built-in or given world");
   auto a = std::make_shared<SimulateArgs>();
   SimulationOptions& o = a->options;
-  cmd->add_option("--world", a->world, "built-in world: " + names);
+  auto* world = cmd->add_option("--world", a->world, "built-in world: " + names)
+                    ->check(CLI::IsMember(BuiltinWorldNames()));
   cmd->add_option("--world-file", a->world_file,
-                  "any LineMap file as world (a route through its free space is chosen)");
+                  "any LineMap file as world (a route through its free space is chosen)")
+      ->excludes(world);
   cmd->add_option("--beams", o.laser.beams, "laser beams")->check(CLI::Range(2, 100000));
   cmd->add_option("--fov", o.laser.field_of_view_deg, "field of view, degrees")
       ->check(CLI::Range(1.0, 360.0));

@@ -91,7 +91,7 @@ TEST_F(CliTest, SimulateThenLocalizeWritesEveryOutput) {
 
 TEST_F(CliTest, MissingFileIsAClearError) {
   const Result r = RunCli("info " + Path("nope.clf"));
-  EXPECT_NE(r.status, 0);
+  EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.output.find("nope.clf"), std::string::npos) << r.output;
 }
 
@@ -99,20 +99,37 @@ TEST_F(CliTest, MalformedLogNamesFileAndLine) {
   std::ofstream(Path("bad.clf"))
       << "# header\nODOM 0 0 0 0 0 0 1.0 nohost 0\nFLASER 3 1.0 2.0 x 0 0 0 0 0 0 1.0 nohost 0\n";
   const Result r = RunCli("info " + Path("bad.clf"));
-  EXPECT_NE(r.status, 0);
+  EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.output.find("bad.clf:3"), std::string::npos) << r.output;
   const Result lenient = RunCli("info --lenient " + Path("bad.clf"));
   EXPECT_EQ(lenient.status, 0) << lenient.output;
   EXPECT_NE(lenient.output.find("skipped 1"), std::string::npos) << lenient.output;
 }
 
+// A refused command line exits with 2 and says which flag, before any file is touched (m and l
+// do not exist); bad files exit with 1.
 TEST_F(CliTest, BadFlagsAreRefused) {
-  EXPECT_NE(RunCli("localize --map m --log l --out o --optimizer sga").status, 0);
-  EXPECT_NE(RunCli("localize --map m --log l --out o --CR 1.5").status, 0);
-  EXPECT_NE(RunCli("simulate --world atlantis --out " + Path("x")).status, 0);
-  const Result start = RunCli("localize --map m --log l --out o --start 1,2");
-  EXPECT_NE(start.status, 0);
-  EXPECT_EQ(RunCli("frobnicate").status != 0, true);
+  const std::string localize = "localize --map m --log l --out " + Path("o");
+  const Result optimizer = RunCli(localize + " --optimizer sga");
+  EXPECT_EQ(optimizer.status, 2);
+  EXPECT_NE(optimizer.output.find("--optimizer"), std::string::npos) << optimizer.output;
+  EXPECT_EQ(RunCli(localize + " --CR 1.5").status, 2);
+  EXPECT_EQ(RunCli(localize + " --bogus").status, 2);
+  const Result strategy = RunCli(localize + " --strategy rand3exp");
+  EXPECT_EQ(strategy.status, 2);
+  EXPECT_NE(strategy.output.find("rand3exp"), std::string::npos) << strategy.output;
+  const Result start = RunCli(localize + " --start 1,2");
+  EXPECT_EQ(start.status, 2);
+  EXPECT_NE(start.output.find("--start"), std::string::npos) << start.output;
+  EXPECT_EQ(RunCli(localize + " --map-from-log l2").status, 2);
+  EXPECT_EQ(RunCli(localize + " --optimizer de --pop 3").status, 2);
+  EXPECT_EQ(RunCli("eval " + Path("t.txt")).status, 2);
+  EXPECT_EQ(RunCli("simulate --world atlantis --out " + Path("o")).status, 2);
+  EXPECT_EQ(RunCli("simulate --world s-corridor --world-file w --out " + Path("o")).status, 2);
+  EXPECT_EQ(RunCli("frobnicate").status, 2);
+  EXPECT_FALSE(fs::exists(dir_ / "o"));
+  EXPECT_EQ(RunCli(localize).status, 1);  // a valid command line, but no such files
+  EXPECT_EQ(RunCli("--help").status, 0);
 }
 
 TEST_F(CliTest, InfoDescribesTheIntelLog) {
