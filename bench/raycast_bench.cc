@@ -39,17 +39,23 @@ std::vector<Eigen::Vector2d> Origins(const World& world, std::size_t count) {
   return origins;
 }
 
-void BM_LineMapCastRay(benchmark::State& state, const char* name) {
-  const World world = BuiltinWorld(name);
+// Casts single 8 m rays through `map` (a LineMap or an OccupancyGrid) from the world's route.
+template <typename Map>
+void CastSingleRays(benchmark::State& state, const World& world, const Map& map) {
   const auto origins = Origins(world, 1024);
   const auto directions = Directions(1024);
   std::size_t i = 0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(
-        world.map.CastRay(origins[i & 1023], directions[(i + (i >> 10)) & 1023], 8.0));
+        map.CastRay(origins[i & 1023], directions[(i + (i >> 10)) & 1023], 8.0));
     ++i;
   }
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations()));
+}
+
+void BM_LineMapCastRay(benchmark::State& state, const char* name) {
+  const World world = BuiltinWorld(name);
+  CastSingleRays(state, world, world.map);
   state.counters["walls"] = static_cast<double>(world.map.size());
 }
 BENCHMARK_CAPTURE(BM_LineMapCastRay, office_boxes, "office-boxes");
@@ -75,16 +81,7 @@ OccupancyGrid ClusterGrid(const World& world) {
 
 void BM_GridCastRay(benchmark::State& state) {
   const World world = BuiltinWorld("office-cluster");
-  const OccupancyGrid grid = ClusterGrid(world);
-  const auto origins = Origins(world, 1024);
-  const auto directions = Directions(1024);
-  std::size_t i = 0;
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(
-        grid.CastRay(origins[i & 1023], directions[(i + (i >> 10)) & 1023], 8.0));
-    ++i;
-  }
-  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()));
+  CastSingleRays(state, world, ClusterGrid(world));
 }
 BENCHMARK(BM_GridCastRay);
 

@@ -55,7 +55,11 @@ TEST_P(StudyEnvironmentTest, CentimetreAccuracyAt20cmNoise) {
 
 TEST_P(StudyEnvironmentTest, KeepsTrackAt300cmNoise) {
   const StudyRun run = LocalizeInWorld(GetParam(), 3.0, 2);
-  EXPECT_LE(run.errors.rms_translation, 0.15);
+  // RMS per axis, as eq. 9 of 003 and the 20 cm criterion above. Over seeds 2 to 7 the corridor,
+  // whose long straight legs say little about the position along them, gives 9.8 to 12.1 cm
+  // per axis; the room with objects 3.4 to 5.2 cm. A lost track would be off by metres.
+  EXPECT_LE(run.errors.rms_x, 0.15);
+  EXPECT_LE(run.errors.rms_y, 0.15);
   EXPECT_LE(run.errors.max_translation, 0.6);
 }
 
