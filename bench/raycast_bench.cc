@@ -61,8 +61,8 @@ void BM_LineMapCastRay(benchmark::State& state, const char* name) {
 BENCHMARK_CAPTURE(BM_LineMapCastRay, office_boxes, "office-boxes");
 BENCHMARK_CAPTURE(BM_LineMapCastRay, office_cluster, "office-cluster");
 
-// A 5 cm grid rasterised from the office cluster's walls.
-OccupancyGrid ClusterGrid(const World& world) {
+// A 5 cm grid rasterised from the world's walls.
+OccupancyGrid RasterGrid(const World& world) {
   const Bounds& b = world.map.bounds();
   const double res = 0.05;
   OccupancyGrid grid(res, b.min - Eigen::Vector2d(1, 1),
@@ -79,11 +79,14 @@ OccupancyGrid ClusterGrid(const World& world) {
   return grid;
 }
 
-void BM_GridCastRay(benchmark::State& state) {
-  const World world = BuiltinWorld("office-cluster");
-  CastSingleRays(state, world, ClusterGrid(world));
+void BM_GridCastRay(benchmark::State& state, const char* name) {
+  const World world = BuiltinWorld(name);
+  const OccupancyGrid grid = RasterGrid(world);
+  CastSingleRays(state, world, grid);
+  state.counters["cells"] = static_cast<double>(grid.width()) * grid.height();
 }
-BENCHMARK(BM_GridCastRay);
+BENCHMARK_CAPTURE(BM_GridCastRay, office_boxes, "office-boxes");
+BENCHMARK_CAPTURE(BM_GridCastRay, office_cluster, "office-cluster");
 
 // One fan as the 2D estimator renders it: 481 rays (180 degrees of beams plus +-30 degrees of
 // heading at 0.5 degrees), items = rays.
@@ -109,7 +112,7 @@ BENCHMARK_CAPTURE(BM_SegmentRendererFan, office_cluster, "office-cluster");
 // a grid map renders it.
 void BM_GridRendererFan(benchmark::State& state) {
   const World world = BuiltinWorld("office-cluster");
-  const OccupancyGrid grid = ClusterGrid(world);
+  const OccupancyGrid grid = RasterGrid(world);
   const GridRenderer renderer(grid);
   const auto origins = Origins(world, 64);
   const RayFan fan(-2.0, 0.5 * std::numbers::pi / 180, 481);
