@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
+#include <string>
 
 #include "common/image/image.h"
 #include "common/localization/test_scenes.h"
@@ -21,7 +24,12 @@ int CountPixels(const Image& image, Rgb color) {
 
 class MapPictureTest : public ::testing::Test {
  protected:
-  std::filesystem::path path_ = std::filesystem::temp_directory_path() / "evoslam_map_test.png";
+  // One file per test: ctest runs the tests of this fixture in parallel processes.
+  std::filesystem::path path_ =
+      std::filesystem::temp_directory_path() /
+      ("evoslam_map_picture_" +
+       std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+       std::to_string(::getpid()) + ".png");
   void TearDown() override { std::filesystem::remove(path_); }
 };
 
