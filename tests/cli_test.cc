@@ -10,6 +10,7 @@
 #include <string>
 
 #include "common/io/trajectory_io.h"
+#include "common/util/scratch_dir.h"
 
 namespace {
 
@@ -34,17 +35,9 @@ Result RunCli(const std::string& args) {
 
 class CliTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("evoslam_cli_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
   std::string Path(const std::string& name) const { return (dir_ / name).string(); }
 
-  fs::path dir_;
+  evoslam::testing::ScratchDir dir_;
 };
 
 TEST_F(CliTest, SimulateThenLocalizeWritesEveryOutput) {

@@ -1,4 +1,5 @@
 #include "common/grid/grid_image.h"
+#include "common/util/scratch_dir.h"
 
 #include <gtest/gtest.h>
 
@@ -34,11 +35,10 @@ TEST(GridImageTest, RenderColoursCellsWithYUp) {
 }
 
 TEST(GridImageTest, WriteGridPngReadsBack) {
-  const std::filesystem::path path =
-      std::filesystem::temp_directory_path() / "evoslam_grid_image_test.png";
+  const testing::ScratchDir dir;
+  const std::filesystem::path path = dir / "grid.png";
   WriteGridPng(SmallGrid(), path);
   const Image back = ReadPng(path);
-  std::filesystem::remove(path);
   const Image expected = RenderGrid(SmallGrid());
   ASSERT_EQ(back.width(), expected.width());
   ASSERT_EQ(back.height(), expected.height());

@@ -12,6 +12,7 @@
 #include "common/image/image.h"
 #include "common/image/pgm.h"
 #include "common/util/error.h"
+#include "common/util/scratch_dir.h"
 
 namespace evoslam {
 namespace {
@@ -21,15 +22,6 @@ using ::testing::HasSubstr;
 
 class MapIoTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("evoslam_map_io_test_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   fs::path WriteText(const std::string& name, const std::string& text) {
     const fs::path path = dir_ / name;
     fs::create_directories(path.parent_path());
@@ -60,7 +52,7 @@ class MapIoTest : public ::testing::Test {
     return InputError("", 0, "");
   }
 
-  fs::path dir_;
+  testing::ScratchDir dir_;
 };
 
 TEST_F(MapIoTest, ReadsTrinaryPgmMap) {

@@ -10,6 +10,7 @@
 
 #include "common/image/image.h"
 #include "common/util/error.h"
+#include "common/util/scratch_dir.h"
 
 namespace evoslam {
 namespace {
@@ -18,14 +19,6 @@ namespace fs = std::filesystem;
 
 class PngTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("evoslam_png_test_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   // Writes raw pixel bytes of the given libpng format, to test reading non-RGB PNGs.
   void WriteRaw(const fs::path& path, int width, int height, png_uint_32 format,
                 const std::vector<std::uint8_t>& bytes) {
@@ -38,7 +31,7 @@ class PngTest : public ::testing::Test {
         << png.message;
   }
 
-  fs::path dir_;
+  testing::ScratchDir dir_;
 };
 
 TEST_F(PngTest, RoundTripsEveryPixel) {

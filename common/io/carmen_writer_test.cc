@@ -13,13 +13,14 @@
 #include "common/io/carmen_reader.h"
 #include "common/io/testing_files.h"
 #include "common/util/error.h"
+#include "common/util/scratch_dir.h"
 
 namespace evoslam {
 namespace {
 
 using io_testing::ReadBytes;
-using io_testing::TempDir;
 using ::testing::HasSubstr;
+using testing::ScratchDir;
 
 constexpr double kPi = std::numbers::pi;
 
@@ -140,14 +141,14 @@ std::vector<std::string> Lines(const std::filesystem::path& path) {
 std::string FirstWord(const std::string& line) { return line.substr(0, line.find(' ')); }
 
 TEST(CarmenWriterTest, RoundTripsEveryMessageKind) {
-  TempDir dir;
+  ScratchDir dir;
   const Dataset original = MakeDataset();
   WriteCarmen(original, dir / "out.clf");
   ExpectSameDataset(ReadCarmen(dir / "out.clf"), original);
 }
 
 TEST(CarmenWriterTest, ChoosesMessagesAndOrdersThemByTime) {
-  TempDir dir;
+  ScratchDir dir;
   WriteCarmen(MakeDataset(), dir / "out.clf");
   std::vector<std::string> messages;
   for (const std::string& line : Lines(dir / "out.clf")) {
@@ -163,7 +164,7 @@ TEST(CarmenWriterTest, ChoosesMessagesAndOrdersThemByTime) {
 }
 
 TEST(CarmenWriterTest, KeepsEachStreamsOrderWhenTimestampsAreNotSorted) {
-  TempDir dir;
+  ScratchDir dir;
   Generator g;
   Dataset d;
   d.scans = {MakeScan(g, 180, 5.0, LaserMessage::kFront),
@@ -175,7 +176,7 @@ TEST(CarmenWriterTest, KeepsEachStreamsOrderWhenTimestampsAreNotSorted) {
 }
 
 TEST(CarmenWriterTest, GeometryFlaserCannotHoldGoesAsRobotLaser) {
-  TempDir dir;
+  ScratchDir dir;
   Generator g;
   Dataset d;
   d.scans = {MakeOddScan(g, 1.0, LaserMessage::kFront),
@@ -196,7 +197,7 @@ TEST(CarmenWriterTest, GeometryFlaserCannotHoldGoesAsRobotLaser) {
 }
 
 TEST(CarmenWriterTest, RangeMaxParamLetsFlaserCarryOtherRanges) {
-  TempDir dir;
+  ScratchDir dir;
   Generator g;
   Dataset d;
   d.params = {{"laser_front_laser_max_range", "20"}};
@@ -212,7 +213,7 @@ TEST(CarmenWriterTest, RangeMaxParamLetsFlaserCarryOtherRanges) {
 }
 
 TEST(CarmenWriterTest, MillimetreRangesReadBackExactly) {
-  TempDir dir;
+  ScratchDir dir;
   Generator g;
   Dataset d;
   d.scans = {MakeScan(g, 181, 1.0, LaserMessage::kFront)};
@@ -225,7 +226,7 @@ TEST(CarmenWriterTest, MillimetreRangesReadBackExactly) {
 }
 
 TEST(CarmenWriterTest, RejectsWhatCarmenCannotHold) {
-  TempDir dir;
+  ScratchDir dir;
   const auto expect_error = [&](const Dataset& d, const std::string& part) {
     try {
       WriteCarmen(d, dir / "bad.clf");
@@ -256,7 +257,7 @@ TEST(CarmenWriterTest, RejectsWhatCarmenCannotHold) {
 }
 
 TEST(CarmenWriterTest, UnwritablePathIsAnErrorNamingIt) {
-  TempDir dir;
+  ScratchDir dir;
   const auto path = dir / "missing_folder" / "out.clf";
   try {
     WriteCarmen(MakeDataset(), path);
@@ -269,7 +270,7 @@ TEST(CarmenWriterTest, UnwritablePathIsAnErrorNamingIt) {
 TEST(CarmenWriterRealDataTest, IntelLogRoundTrips) {
   const auto path = std::filesystem::path(EVOSLAM_DATA_DIR) / "intel.clf.bz2";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "no " << path;
-  TempDir dir;
+  ScratchDir dir;
   const Dataset original = ReadCarmen(path);
   WriteCarmen(original, dir / "intel.clf");
   ExpectSameDataset(ReadCarmen(dir / "intel.clf"), original);

@@ -8,16 +8,17 @@
 
 #include "common/io/testing_files.h"
 #include "common/util/error.h"
+#include "common/util/scratch_dir.h"
 
 namespace evoslam {
 namespace {
 
 using io_testing::Bzip2Bytes;
 using io_testing::GzipBytes;
-using io_testing::TempDir;
 using io_testing::WriteBytes;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
+using testing::ScratchDir;
 
 std::vector<std::string> ReadAll(LineReader& reader) {
   std::vector<std::string> lines;
@@ -61,7 +62,7 @@ InputError CatchInputError(F&& f) {
 }
 
 TEST(LineReaderTest, SplitsPlainTextIntoLines) {
-  TempDir dir;
+  ScratchDir dir;
   WriteBytes(dir / "a.txt", "first\n\nthird\r\nlast without newline");
   LineReader reader(dir / "a.txt");
   EXPECT_EQ(reader.compression(), Compression::kNone);
@@ -72,13 +73,13 @@ TEST(LineReaderTest, SplitsPlainTextIntoLines) {
 }
 
 TEST(LineReaderTest, EmptyFileHasNoLines) {
-  TempDir dir;
+  ScratchDir dir;
   WriteBytes(dir / "empty", "");
   EXPECT_TRUE(ReadAll(dir / "empty").empty());
 }
 
 TEST(LineReaderTest, EmptyCompressedFilesHaveNoLines) {
-  TempDir dir;
+  ScratchDir dir;
   WriteBytes(dir / "empty.gz", GzipBytes(""));
   WriteBytes(dir / "empty.bz2", Bzip2Bytes(""));
   EXPECT_TRUE(ReadAll(dir / "empty.gz").empty());
@@ -86,52 +87,52 @@ TEST(LineReaderTest, EmptyCompressedFilesHaveNoLines) {
 }
 
 TEST(LineReaderTest, FinalNewlineDoesNotAddALine) {
-  TempDir dir;
+  ScratchDir dir;
   WriteBytes(dir / "a", "a\nb\n");
   EXPECT_THAT(ReadAll(dir / "a"), ElementsAre("a", "b"));
 }
 
 TEST(LineReaderTest, CountsLinesAcrossBufferRefills) {
-  TempDir dir;
+  ScratchDir dir;
   WriteBytes(dir / "many.txt", NumberedLines(100000));
   ExpectNumberedLines(dir / "many.txt", 100000);
 }
 
 TEST(LineReaderTest, ReadsLinesLongerThanItsBuffer) {
-  TempDir dir;
+  ScratchDir dir;
   const std::string long_line(3'000'000, 'q');
   WriteBytes(dir / "long", "short\n" + long_line + "\nend\n");
   EXPECT_THAT(ReadAll(dir / "long"), ElementsAre("short", long_line, "end"));
 }
 
 TEST(LineReaderTest, DecompressesGzipWhateverTheName) {
-  TempDir dir;
+  ScratchDir dir;
   WriteBytes(dir / "log.txt", GzipBytes(NumberedLines(50000)));
   EXPECT_EQ(LineReader(dir / "log.txt").compression(), Compression::kGzip);
   ExpectNumberedLines(dir / "log.txt", 50000);
 }
 
 TEST(LineReaderTest, DecompressesBzip2WhateverTheName) {
-  TempDir dir;
+  ScratchDir dir;
   WriteBytes(dir / "log.gz", Bzip2Bytes(NumberedLines(50000)));
   EXPECT_EQ(LineReader(dir / "log.gz").compression(), Compression::kBzip2);
   ExpectNumberedLines(dir / "log.gz", 50000);
 }
 
 TEST(LineReaderTest, ReadsConcatenatedGzipMembers) {
-  TempDir dir;
+  ScratchDir dir;
   WriteBytes(dir / "two.gz", GzipBytes("a\nb") + GzipBytes("c\nd\n"));
   EXPECT_THAT(ReadAll(dir / "two.gz"), ElementsAre("a", "bc", "d"));
 }
 
 TEST(LineReaderTest, ReadsConcatenatedBzip2Streams) {
-  TempDir dir;
+  ScratchDir dir;
   WriteBytes(dir / "two.bz2", Bzip2Bytes("a\nb\n") + Bzip2Bytes("c\nd\n") + Bzip2Bytes("e\n"));
   EXPECT_THAT(ReadAll(dir / "two.bz2"), ElementsAre("a", "b", "c", "d", "e"));
 }
 
 TEST(LineReaderTest, MissingFileNamesTheFile) {
-  TempDir dir;
+  ScratchDir dir;
   const auto path = dir / "no_such_log.clf";
   const InputError e = CatchInputError([&] { LineReader reader(path); });
   EXPECT_EQ(e.source(), path.string());
@@ -140,7 +141,7 @@ TEST(LineReaderTest, MissingFileNamesTheFile) {
 }
 
 TEST(LineReaderTest, DirectoryIsAnInputError) {
-  TempDir dir;
+  ScratchDir dir;
   const InputError e = CatchInputError([&] {
     LineReader reader(dir.path());
     ReadAll(reader);
@@ -149,7 +150,7 @@ TEST(LineReaderTest, DirectoryIsAnInputError) {
 }
 
 TEST(LineReaderTest, RejectsXzAndZstdAsUnsupported) {
-  TempDir dir;
+  ScratchDir dir;
   WriteBytes(dir / "log.xz", std::string("\xFD"
                                          "7zXZ\0rest",
                                          10));
@@ -166,7 +167,7 @@ TEST(LineReaderTest, RejectsXzAndZstdAsUnsupported) {
 }
 
 TEST(LineReaderTest, TruncatedGzipIsAnErrorAtTheLineReached) {
-  TempDir dir;
+  ScratchDir dir;
   const std::string text = NumberedLines(20000);
   const std::string gz = GzipBytes(text);
   WriteBytes(dir / "cut.gz", gz.substr(0, gz.size() / 2));
@@ -181,7 +182,7 @@ TEST(LineReaderTest, TruncatedGzipIsAnErrorAtTheLineReached) {
 }
 
 TEST(LineReaderTest, TruncatedBzip2IsAnError) {
-  TempDir dir;
+  ScratchDir dir;
   const std::string bz = Bzip2Bytes(NumberedLines(20000));
   WriteBytes(dir / "cut.bz2", bz.substr(0, bz.size() - 100));
   LineReader reader(dir / "cut.bz2");
@@ -192,7 +193,7 @@ TEST(LineReaderTest, TruncatedBzip2IsAnError) {
 }
 
 TEST(LineReaderTest, CorruptBzip2IsAnError) {
-  TempDir dir;
+  ScratchDir dir;
   std::string bz = Bzip2Bytes(NumberedLines(20000));
   for (std::size_t i = bz.size() / 2; i < bz.size() / 2 + 64; ++i)
     bz[i] = static_cast<char>(~bz[i]);
@@ -203,7 +204,7 @@ TEST(LineReaderTest, CorruptBzip2IsAnError) {
 }
 
 TEST(LineReaderTest, CorruptGzipIsAnError) {
-  TempDir dir;
+  ScratchDir dir;
   std::string gz = GzipBytes(NumberedLines(20000));
   for (std::size_t i = gz.size() / 2; i < gz.size() / 2 + 64; ++i)
     gz[i] = static_cast<char>(~gz[i]);
@@ -214,7 +215,7 @@ TEST(LineReaderTest, CorruptGzipIsAnError) {
 }
 
 TEST(LineReaderTest, MovedReaderContinuesWhereItWas) {
-  TempDir dir;
+  ScratchDir dir;
   WriteBytes(dir / "a", "1\n2\n3\n");
   LineReader first(dir / "a");
   ASSERT_EQ(first.Next(), "1");

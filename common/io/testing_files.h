@@ -1,12 +1,11 @@
 #ifndef EVOSLAM_COMMON_IO_TESTING_FILES_H_
 #define EVOSLAM_COMMON_IO_TESTING_FILES_H_
 
-// Helpers for the io tests only: a scratch folder per test and compressed test files made with
+// Helpers for the io tests only: compressed test files made with
 // zlib and libbz2 directly, so that the reader is checked against the libraries, not itself.
 
 #include <bzlib.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 #include <zlib.h>
 
 #include <filesystem>
@@ -16,31 +15,6 @@
 #include <string_view>
 
 namespace evoslam::io_testing {
-
-// A fresh folder for the running test, removed with everything in it afterwards.
-class TempDir {
- public:
-  TempDir() {
-    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = std::filesystem::temp_directory_path() /
-            ("evoslam_io_" + std::string(info->test_suite_name()) + "_" + info->name() + "_" +
-             std::to_string(::getpid()));
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path_, ignored);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  std::filesystem::path operator/(std::string_view name) const { return path_ / name; }
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
 
 inline void WriteBytes(const std::filesystem::path& path, std::string_view bytes) {
   std::ofstream out(path, std::ios::binary);

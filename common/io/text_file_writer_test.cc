@@ -5,16 +5,17 @@
 
 #include "common/io/testing_files.h"
 #include "common/util/error.h"
+#include "common/util/scratch_dir.h"
 
 namespace evoslam {
 namespace {
 
 using io_testing::ReadBytes;
-using io_testing::TempDir;
 using ::testing::HasSubstr;
+using testing::ScratchDir;
 
 TEST(TextFileWriterTest, WritesWhatItIsGiven) {
-  TempDir dir;
+  ScratchDir dir;
   TextFileWriter writer(dir / "a.txt");
   writer.Write("one\n");
   writer.Write("two");
@@ -24,7 +25,7 @@ TEST(TextFileWriterTest, WritesWhatItIsGiven) {
 }
 
 TEST(TextFileWriterTest, CannotCreateIsAnErrorNamingThePath) {
-  TempDir dir;
+  ScratchDir dir;
   const auto path = dir / "missing" / "a.txt";
   try {
     TextFileWriter writer(path);

@@ -11,15 +11,16 @@
 
 #include "common/io/testing_files.h"
 #include "common/util/error.h"
+#include "common/util/scratch_dir.h"
 
 namespace evoslam {
 namespace {
 
 using io_testing::Bzip2Bytes;
 using io_testing::ReadBytes;
-using io_testing::TempDir;
 using io_testing::WriteBytes;
 using ::testing::HasSubstr;
+using testing::ScratchDir;
 
 std::vector<StampedPose> SomePoses() {
   std::vector<StampedPose> poses;
@@ -45,21 +46,21 @@ void ExpectNearPoses(const std::vector<StampedPose>& actual,
 }
 
 TEST(TrajectoryIoTest, TextRoundTrip) {
-  TempDir dir;
+  ScratchDir dir;
   const auto poses = SomePoses();
   WriteTrajectoryText(poses, dir / "t.txt");
   ExpectNearPoses(ReadTrajectory(dir / "t.txt"), poses, 1e-6);
 }
 
 TEST(TrajectoryIoTest, TumRoundTrip) {
-  TempDir dir;
+  ScratchDir dir;
   const auto poses = SomePoses();
   WriteTrajectoryTum(poses, dir / "t.tum");
   ExpectNearPoses(ReadTrajectory(dir / "t.tum"), poses, 1e-6);
 }
 
 TEST(TrajectoryIoTest, TumLinesHoldTheHeadingQuaternion) {
-  TempDir dir;
+  ScratchDir dir;
   const std::vector<StampedPose> poses = {{1.5, Pose2(3, 4, std::numbers::pi / 2)}};
   WriteTrajectoryTum(poses, dir / "t.tum");
   std::vector<double> values;
@@ -82,7 +83,7 @@ TEST(TrajectoryIoTest, TumLinesHoldTheHeadingQuaternion) {
 }
 
 TEST(TrajectoryIoTest, ReadsCommentsUnnormalisedQuaternionsAndCompressedFiles) {
-  TempDir dir;
+  ScratchDir dir;
   // Yaw of 90 deg as a quaternion scaled by 2; x and y rotations would be dropped.
   WriteBytes(dir / "t.tum.bz2", Bzip2Bytes("# TUM\n\n1.0 1 2 0 0 0 1.41421356 1.41421356\n"
                                            "2.0 3 4 0.5 0 0 0 1\n"));
@@ -103,7 +104,7 @@ InputError ReadError(const std::filesystem::path& path) {
 }
 
 TEST(TrajectoryIoTest, MalformedLinesNameFileLineAndExpectation) {
-  TempDir dir;
+  ScratchDir dir;
   WriteBytes(dir / "five.txt", "# t x y theta\n1 2 3 4\n1 2 3 4 5\n");
   InputError e = ReadError(dir / "five.txt");
   EXPECT_EQ(e.line(), 3u);
@@ -126,7 +127,7 @@ TEST(TrajectoryIoTest, MalformedLinesNameFileLineAndExpectation) {
 }
 
 TEST(TrajectoryIoTest, UnwritablePathIsAnError) {
-  TempDir dir;
+  ScratchDir dir;
   const auto path = dir / "no" / "t.txt";
   EXPECT_THROW(WriteTrajectoryText(SomePoses(), path), Error);
   EXPECT_THROW(WriteTrajectoryTum(SomePoses(), path), Error);

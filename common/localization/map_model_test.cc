@@ -11,6 +11,7 @@
 #include "common/localization/ray_fan.h"
 #include "common/localization/test_scenes.h"
 #include "common/util/error.h"
+#include "common/util/scratch_dir.h"
 
 namespace evoslam {
 namespace {
@@ -70,8 +71,7 @@ TEST(MapModelTest, LocalizesInAGridMap) {
 }
 
 TEST(MapModelTest, LoadsLinesOrGridByExtension) {
-  const auto dir = std::filesystem::temp_directory_path() / "evoslam_map_model_test";
-  std::filesystem::create_directories(dir);
+  const testing::ScratchDir dir;
   WriteLineMap(testing::BoxRoom(), dir / "room.lines");
   WriteMapYaml(BoxRoomGrid(0.05), dir / "room.yaml");
   const MapModel lines = LoadMapModel(dir / "room.lines");
@@ -84,7 +84,6 @@ TEST(MapModelTest, LoadsLinesOrGridByExtension) {
   EXPECT_NEAR(grid.grid()->resolution(), 0.05, 1e-12);
   EXPECT_THROW(LoadMapModel(dir / "absent.yaml"), Error);
   EXPECT_THROW(LoadMapModel(dir / "absent.lines"), Error);
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 
 #include "common/mapping/segment_geometry.h"
 #include "common/util/error.h"
+#include "common/util/scratch_dir.h"
 
 namespace evoslam {
 namespace {
@@ -62,10 +63,6 @@ std::vector<Segment> RandomWalls(std::mt19937_64& gen, int count, double size, d
     walls.push_back({a, a + l * Eigen::Vector2d(std::cos(t), std::sin(t))});
   }
   return walls;
-}
-
-std::filesystem::path TempFile(const std::string& name) {
-  return std::filesystem::path(::testing::TempDir()) / ("evoslam_line_map_" + name);
 }
 
 void WriteText(const std::filesystem::path& path, const std::string& text) {
@@ -249,7 +246,8 @@ TEST(LineMapTest, SegmentsNearAgreesWithBruteForce) {
 TEST(LineMapIoTest, RoundTripIsExact) {
   std::mt19937_64 gen(11);
   const std::vector<Segment> walls = RandomWalls(gen, 50, 30.0, 5.0);
-  const std::filesystem::path path = TempFile("roundtrip.lines");
+  const testing::ScratchDir dir;
+  const std::filesystem::path path = dir / "roundtrip.lines";
   WriteLineMap(LineMap(walls), path);
   const LineMap read = ReadLineMap(path);
   ASSERT_EQ(read.size(), walls.size());
@@ -260,7 +258,8 @@ TEST(LineMapIoTest, RoundTripIsExact) {
 }
 
 TEST(LineMapIoTest, SkipsCommentsAndBlankLines) {
-  const std::filesystem::path path = TempFile("comments.lines");
+  const testing::ScratchDir dir;
+  const std::filesystem::path path = dir / "comments.lines";
   WriteText(path, "# a room\n\n  0 0 4 0   # floor\n\t\n4 0 +4 3.5\r\n-1e-1 2 3 2\n");
   const LineMap map = ReadLineMap(path);
   ASSERT_EQ(map.size(), 3u);
@@ -281,9 +280,10 @@ TEST(LineMapIoTest, MalformedLinesNameFileAndLine) {
       {"0 0 1 1x\n", ":1: expected a finite number for field 4"},
       {"1 2 1 2\n", ":1: expected a wall of non-zero length"},
   };
+  const testing::ScratchDir dir;
   int i = 0;
   for (const auto& c : cases) {
-    const std::filesystem::path path = TempFile("bad" + std::to_string(i++) + ".lines");
+    const std::filesystem::path path = dir / ("bad" + std::to_string(i++) + ".lines");
     WriteText(path, c.text);
     try {
       ReadLineMap(path);
@@ -295,14 +295,15 @@ TEST(LineMapIoTest, MalformedLinesNameFileAndLine) {
 }
 
 TEST(LineMapIoTest, MissingFileNamesPath) {
-  const std::filesystem::path path = TempFile("does_not_exist.lines");
+  const testing::ScratchDir dir;
+  const std::filesystem::path path = dir / "does_not_exist.lines";
   try {
     ReadLineMap(path);
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), HasSubstr(path.string()));
   }
-  EXPECT_THROW(WriteLineMap(LineMap(), TempFile("no_such_dir") / "x.lines"), Error);
+  EXPECT_THROW(WriteLineMap(LineMap(), dir / "no_such_dir" / "x.lines"), Error);
 }
 
 }  // namespace

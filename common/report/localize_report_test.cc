@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "common/util/error.h"
+#include "common/util/scratch_dir.h"
 
 namespace evoslam {
 namespace {
@@ -69,7 +70,8 @@ TEST(LocalizeReportTest, SummaryShowsErrorsInCentimetresAndDegrees) {
 }
 
 TEST(LocalizeReportTest, JsonRoundTripsWithZeroFieldsSpelledOut) {
-  const auto path = std::filesystem::temp_directory_path() / "evoslam_report_test.json";
+  const testing::ScratchDir dir;
+  const auto path = dir / "report.json";
   proto::LocalizeReport r = SampleReport();
   r.mutable_params()->set_seed(0);
   WriteJson(r, path);
@@ -81,7 +83,6 @@ TEST(LocalizeReportTest, JsonRoundTripsWithZeroFieldsSpelledOut) {
   proto::LocalizeReport back;
   ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(text.str(), &back).ok());
   EXPECT_EQ(back.SerializeAsString(), r.SerializeAsString());
-  std::filesystem::remove(path);
 }
 
 TEST(LocalizeReportTest, UnwritablePathIsAnErrorNamingIt) {

@@ -2,14 +2,12 @@
 
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <filesystem>
-#include <string>
 
 #include "common/image/image.h"
 #include "common/localization/test_scenes.h"
 #include "common/util/error.h"
+#include "common/util/scratch_dir.h"
 
 namespace evoslam {
 namespace {
@@ -24,13 +22,8 @@ int CountPixels(const Image& image, Rgb color) {
 
 class MapPictureTest : public ::testing::Test {
  protected:
-  // One file per test: ctest runs the tests of this fixture in parallel processes.
-  std::filesystem::path path_ =
-      std::filesystem::temp_directory_path() /
-      ("evoslam_map_picture_" +
-       std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-       std::to_string(::getpid()) + ".png");
-  void TearDown() override { std::filesystem::remove(path_); }
+  testing::ScratchDir dir_;
+  std::filesystem::path path_ = dir_ / "map.png";
 };
 
 TEST_F(MapPictureTest, DrawsWallsAndEveryTrajectoryInItsColour) {

@@ -11,6 +11,7 @@
 
 #include "common/io/carmen_reader.h"
 #include "common/util/error.h"
+#include "common/util/scratch_dir.h"
 
 namespace evoslam {
 namespace {
@@ -28,12 +29,6 @@ std::string ReadAll(const std::filesystem::path& path) {
   std::stringstream text;
   text << in.rdbuf();
   return text.str();
-}
-
-std::filesystem::path TempDir(const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / name;
-  std::filesystem::remove_all(dir);
-  return dir;
 }
 
 TEST(SimulatorTest, LogsTheRouteLikeTheExperiment) {
@@ -183,7 +178,8 @@ TEST(WriteSimulationTest, WritesLogMapAndTruthReproducibly) {
   options.noise.gaussian_sigma = 0.02;
   options.max_scans = 25;
   const Dataset d = Simulate(world, options);
-  const std::filesystem::path dir = TempDir("evoslam_sim_out") / "nested";
+  const testing::ScratchDir scratch;
+  const std::filesystem::path dir = scratch / "out" / "nested";
   WriteSimulation(d, world, dir);
 
   const std::string truth = ReadAll(dir / "truth.txt");
@@ -212,7 +208,7 @@ TEST(WriteSimulationTest, WritesLogMapAndTruthReproducibly) {
   EXPECT_THAT(ReadAll(dir / "log.clf"), HasSubstr("FLASER 361 "));
 
   // Same seed, same bytes.
-  const std::filesystem::path again = TempDir("evoslam_sim_again");
+  const std::filesystem::path again = scratch / "again";
   WriteSimulation(Simulate(world, options), world, again);
   for (const char* file : {"log.clf", "world.lines", "truth.txt"}) {
     EXPECT_EQ(ReadAll(dir / file), ReadAll(again / file)) << file;
@@ -220,7 +216,8 @@ TEST(WriteSimulationTest, WritesLogMapAndTruthReproducibly) {
 }
 
 TEST(WriteSimulationTest, UncreatableDirectoryNamesThePath) {
-  const std::filesystem::path file = TempDir("evoslam_sim_file");
+  const testing::ScratchDir scratch;
+  const std::filesystem::path file = scratch / "file";
   std::ofstream(file) << "x";
   const World world = BuiltinWorld("empty-room");
   SimulationOptions options;
