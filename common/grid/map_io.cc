@@ -12,6 +12,7 @@
 
 #include "common/image/image.h"
 #include "common/image/pgm.h"
+#include "common/io/text_fields.h"
 #include "common/util/error.h"
 
 namespace evoslam {
@@ -244,12 +245,6 @@ GrayImage ReadMapImage(const MapSpec& spec, const std::string& yaml_source) {
   throw InputError(spec.image.string(), 0, "unsupported map image; expected a PGM or PNG file");
 }
 
-std::string ShortestDecimal(double value) {
-  std::array<char, 64> buffer{};
-  const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-  return std::string(buffer.data(), end);
-}
-
 }  // namespace
 
 OccupancyGrid ReadMapYaml(const fs::path& yaml_path) {
@@ -311,12 +306,12 @@ void WriteMapYaml(const OccupancyGrid& grid, const fs::path& yaml) {
   std::ofstream out(yaml);
   if (!out) throw Error(yaml.string() + ": cannot open for writing");
   out << "image: " << pgm.filename().string() << "\n"
-      << "resolution: " << ShortestDecimal(grid.resolution()) << "\n"
-      << "origin: [" << ShortestDecimal(grid.origin().x()) << ", "
-      << ShortestDecimal(grid.origin().y()) << ", 0.0]\n"
+      << "resolution: " << FormatShortest(grid.resolution()) << "\n"
+      << "origin: [" << FormatShortest(grid.origin().x()) << ", "
+      << FormatShortest(grid.origin().y()) << ", 0.0]\n"
       << "negate: 0\n"
-      << "occupied_thresh: " << ShortestDecimal(kWrittenOccupiedThresh) << "\n"
-      << "free_thresh: " << ShortestDecimal(kWrittenFreeThresh) << "\n";
+      << "occupied_thresh: " << FormatShortest(kWrittenOccupiedThresh) << "\n"
+      << "free_thresh: " << FormatShortest(kWrittenFreeThresh) << "\n";
   out.close();
   if (!out) throw Error(yaml.string() + ": write failed");
 }

@@ -48,4 +48,11 @@ std::optional<std::size_t> ParseCount(std::string_view text) {
   return ParseWhole<std::size_t>(text);
 }
 
+std::string FormatShortest(double value) {
+  // 32 characters hold any double's shortest form ("-2.2250738585072014e-308" is 24).
+  char buffer[32];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  return std::string(buffer, end);
+}
+
 }  // namespace evoslam

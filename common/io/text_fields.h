@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -18,6 +19,9 @@ void SplitFields(std::string_view line, std::vector<std::string_view>* fields);
 std::optional<double> ParseDouble(std::string_view text);
 std::optional<float> ParseFloat(std::string_view text);
 std::optional<std::size_t> ParseCount(std::string_view text);
+
+// The shortest decimal text that reads back as exactly `value` (locale-independent).
+std::string FormatShortest(double value);
 
 }  // namespace evoslam
 

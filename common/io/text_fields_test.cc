@@ -36,5 +36,14 @@ TEST(TextFieldsTest, ParsesWholeNumbersOnly) {
   EXPECT_FALSE(ParseCount("99999999999999999999999"));
 }
 
+TEST(TextFieldsTest, FormatsTheShortestTextThatReadsBack) {
+  EXPECT_EQ(FormatShortest(0.05), "0.05");
+  EXPECT_EQ(FormatShortest(8.0), "8");
+  EXPECT_EQ(FormatShortest(-1e-300), "-1e-300");
+  for (const double v : {0.1 + 0.2, 976052905.167303, -2.2250738585072014e-308, 1.0 / 3.0}) {
+    EXPECT_EQ(ParseDouble(FormatShortest(v)), v) << FormatShortest(v);
+  }
+}
+
 }  // namespace
 }  // namespace evoslam

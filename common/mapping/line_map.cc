@@ -1,14 +1,14 @@
 #include "common/mapping/line_map.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
-#include <system_error>
 
+#include "common/io/text_fields.h"
 #include "common/mapping/segment_geometry.h"
 #include "common/util/error.h"
 
@@ -61,38 +61,12 @@ std::string_view StripComment(std::string_view line) {
   return hash == std::string_view::npos ? line : line.substr(0, hash);
 }
 
-std::vector<std::string_view> SplitWhitespace(std::string_view text) {
-  std::vector<std::string_view> fields;
-  std::size_t i = 0;
-  const auto is_space = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v'; };
-  while (i < text.size()) {
-    while (i < text.size() && is_space(text[i])) ++i;
-    const std::size_t begin = i;
-    while (i < text.size() && !is_space(text[i])) ++i;
-    if (i > begin) fields.push_back(text.substr(begin, i - begin));
-  }
-  return fields;
-}
-
-bool ParseFinite(std::string_view text, double* value) {
-  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, *value);
-  return ec == std::errc() && ptr == end && std::isfinite(*value);
-}
-
-std::string FormatNumber(double value) {
-  char buffer[32];
-  const auto [ptr, ec] = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return ec == std::errc() ? std::string(buffer, ptr) : std::string("nan");
-}
-
 }  // namespace
 
 LineMap::LineMap(std::vector<Segment> segments, double cell_size)
     : segments_(std::move(segments)), cell_size_(cell_size) {
   if (!(cell_size > 0.0) || !std::isfinite(cell_size)) {
-    throw Error("line map: cell size must be a positive number, got " + FormatNumber(cell_size));
+    throw Error("line map: cell size must be a positive number, got " + FormatShortest(cell_size));
   }
   if (segments_.size() >= std::numeric_limits<std::uint32_t>::max()) {
     throw Error("line map: too many walls (" + std::to_string(segments_.size()) + ")");
@@ -287,10 +261,11 @@ LineMap ReadLineMap(const std::filesystem::path& path) {
   if (!in) throw InputError(source, 0, "cannot open line map for reading");
   std::vector<Segment> segments;
   std::string line;
+  std::vector<std::string_view> fields;
   std::size_t line_number = 0;
   while (std::getline(in, line)) {
     ++line_number;
-    const std::vector<std::string_view> fields = SplitWhitespace(StripComment(line));
+    SplitFields(StripComment(line), &fields);
     if (fields.empty()) continue;
     if (fields.size() != 4) {
       throw InputError(source, line_number,
@@ -299,11 +274,13 @@ LineMap ReadLineMap(const std::filesystem::path& path) {
     }
     double v[4];
     for (int k = 0; k < 4; ++k) {
-      if (!ParseFinite(fields[k], &v[k])) {
+      const std::optional<double> value = ParseDouble(fields[k]);
+      if (!value || !std::isfinite(*value)) {
         throw InputError(source, line_number,
                          "expected a finite number for field " + std::to_string(k + 1) +
                              " of \"x1 y1 x2 y2\", found \"" + std::string(fields[k]) + "\"");
       }
+      v[k] = *value;
     }
     Segment s{{v[0], v[1]}, {v[2], v[3]}};
     if (s.a == s.b) {
@@ -320,8 +297,8 @@ void WriteLineMap(const LineMap& map, const std::filesystem::path& path) {
   if (!out) throw Error(path.string() + ": cannot open line map for writing");
   out << "# evoslam line map: one wall per line, x1 y1 x2 y2 in metres\n";
   for (const Segment& s : map.segments()) {
-    out << FormatNumber(s.a.x()) << ' ' << FormatNumber(s.a.y()) << ' ' << FormatNumber(s.b.x())
-        << ' ' << FormatNumber(s.b.y()) << '\n';
+    out << FormatShortest(s.a.x()) << ' ' << FormatShortest(s.a.y()) << ' '
+        << FormatShortest(s.b.x()) << ' ' << FormatShortest(s.b.y()) << '\n';
   }
   out.close();
   if (!out) throw Error(path.string() + ": error while writing line map");

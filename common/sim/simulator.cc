@@ -1,6 +1,5 @@
 #include "common/sim/simulator.h"
 
-#include <charconv>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -10,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "common/io/carmen_writer.h"
+#include "common/io/text_fields.h"
 #include "common/io/text_file_writer.h"
 #include "common/mapping/line_map.h"
 #include "common/sim/crowd.h"
@@ -23,12 +23,6 @@ namespace {
 // Independent random streams, so that turning one disturbance on or off leaves the others'
 // draws unchanged.
 enum Stream : std::uint64_t { kOdometryStream = 1, kRangeStream = 2, kCrowdStream = 3 };
-
-std::string Shortest(double value) {
-  char buffer[32];
-  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return std::string(buffer, ec == std::errc() ? end : buffer);
-}
 
 void CheckOptions(const SimulationOptions& options) {
   CheckLaserModel(options.laser);
@@ -65,7 +59,7 @@ Dataset Simulate(const World& world, const SimulationOptions& options) {
   Dataset dataset;
   dataset.source = "simulated world " + world.name;
   // FLASER lines do not carry the maximum range; CARMEN logs state it as a PARAM.
-  dataset.params.emplace_back("robot_front_laser_max", Shortest(laser.max_range));
+  dataset.params.emplace_back("robot_front_laser_max", FormatShortest(laser.max_range));
   dataset.scans.reserve(route.size());
   dataset.odometry.reserve(route.size());
   Pose2 odometry = route.front();
