@@ -61,7 +61,7 @@ LocalizeOptions OptionsFrom(const LocalizeArgs& a) try {
   e.optimizer = ParseOptimizerKind(a.optimizer);
   e.de.strategy = ParseDeStrategy(a.strategy);
   e.de.population = e.pso.particles = a.pop;
-  e.de.generations = e.pso.generations = a.gen;
+  e.generations = a.gen;
   e.de.f = a.f;
   e.de.cr = a.cr;
   e.pso.inertia = a.pso.inertia;
@@ -216,7 +216,7 @@ void AddLocalizeCommand(CLI::App& app) {
   cmd->add_option("--strategy", a->strategy, "DE strategy, e.g. rand1exp, best1bin");
   cmd->add_option("--pop", a->pop, "population (DE) or particles (PSO)")
       ->check(CLI::Range(2, 100000));
-  cmd->add_option("--gen", a->gen, "generations")->check(CLI::Range(0, 1000000));
+  cmd->add_option("--gen", a->gen, "generations")->check(CLI::Range(1, 1000000));
   cmd->add_option("--F", a->f, "DE differential weight")->check(CLI::Range(0.0, 2.0));
   cmd->add_option("--CR", a->cr, "DE crossover rate")->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--w", a->pso.inertia, "PSO inertia weight")->check(CLI::Range(0.0, 1.0));

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "common/localization/scan_match_problem.h"
+#include "common/optim/evolve.h"
 #include "common/optim/exhaustive_search.h"
 #include "common/util/error.h"
 
@@ -45,6 +46,7 @@ void ValidateEstimatorParams(const EstimatorParams& params) {
   }
   if (!(params.heading_step > 0.0)) throw Error("heading step must be positive");
   if (!(params.exhaustive_step > 0.0)) throw Error("exhaustive step must be positive");
+  if (params.generations == 0) throw Error("generations must be at least 1");
   if (params.optimizer == OptimizerKind::kDe && params.de.population < 4) {
     throw Error("DE population must be at least 4");
   }
@@ -60,11 +62,17 @@ namespace {
 
 OptimResult Optimize(const Problem& problem, const EstimatorParams& params,
                      const Eigen::VectorXd& steps, Rng& rng) {
+  StopCriteria stop;
+  stop.max_generations = params.generations;
   switch (params.optimizer) {
-    case OptimizerKind::kDe:
-      return RunDifferentialEvolution(problem, params.de, rng);
-    case OptimizerKind::kPso:
-      return RunParticleSwarm(problem, params.pso, rng);
+    case OptimizerKind::kDe: {
+      DifferentialEvolution de(params.de);
+      return Minimize(problem, de, stop, rng);
+    }
+    case OptimizerKind::kPso: {
+      ParticleSwarm pso(params.pso);
+      return Minimize(problem, pso, stop, rng);
+    }
     case OptimizerKind::kExhaustive:
       return RunExhaustiveSearch(problem, steps);
   }

@@ -30,6 +30,7 @@ struct EstimatorParams {
   OptimizerKind optimizer = OptimizerKind::kDe;
   DeParams de;
   PsoParams pso;
+  std::size_t generations = 25;
   double window = 0.6;  // square search window's side, m
   double heading_half_window = 30.0 * 3.14159265358979323846 / 180.0;  // rad
   double heading_step = 0.5 * 3.14159265358979323846 / 180.0;          // rad

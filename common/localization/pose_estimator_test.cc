@@ -37,7 +37,7 @@ TEST_P(EstimatePoseTest, FindsTruePoseInWindow) {
     // A 3D search needs a larger budget (the papers' observation); exhaustive in 3D is slow, so
     // its lattice is coarser here.
     params.de.population = params.pso.particles = 40;
-    params.de.generations = params.pso.generations = 60;
+    params.generations = 60;
     params.exhaustive_step = 0.02;
   }
   const SegmentRenderer renderer(TemporaryMap(map, center.translation(), 9.0));

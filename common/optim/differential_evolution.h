@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "common/optim/problem.h"
+#include "common/optim/algorithm.h"
 #include "common/util/random.h"
 
 namespace evoslam {
@@ -31,21 +31,42 @@ DeStrategy ParseDeStrategy(std::string_view name);  // throws Error listing the 
 std::string_view DeStrategyName(DeStrategy strategy);
 std::vector<std::string> DeStrategyNames();
 
-// Defaults are the settings of the papers' localization experiments (DE/rand/1/exp, 25 x 25,
-// F 0.6, CR 0.9).
+// Defaults are the settings of the papers' localization experiments (DE/rand/1/exp, 25
+// individuals, F 0.6, CR 0.9; 000 and 003 run it for 25 generations).
 struct DeParams {
   DeStrategy strategy = DeStrategy::kRand1Exp;
   std::size_t population = 25;
-  std::size_t generations = 25;
   double f = 0.6;
   double cr = 0.9;
 };
+
+// Throws Error naming the parameter that cannot work.
+void ValidateDeParams(const DeParams& params);
 
 // Synchronous DE: each generation builds all trial vectors, evaluates them as one batch, then
 // keeps each trial that is no worse than its target. Trial coordinates that leave the box are
 // put halfway between the base vector and the violated bound, so the search stays in the window
 // without piling up on its edges.
-OptimResult RunDifferentialEvolution(const Problem& problem, const DeParams& params, Rng& rng);
+class DifferentialEvolution : public Algorithm {
+ public:
+  explicit DifferentialEvolution(const DeParams& params);
+  std::string_view name() const override { return "de"; }
+  const DeParams& params() const { return params_; }
+
+ protected:
+  void DoStep(const Problem& problem, Rng& rng) override;
+  std::size_t PopulationSize() const override { return params_.population; }
+
+ private:
+  DeParams params_;
+  Eigen::MatrixXd trials_;
+  Eigen::MatrixXd trial_f_;
+  Eigen::VectorXd mutant_;
+};
+
+// How many random population members a strategy's mutant uses besides the target and the best.
+std::size_t DeRandomMembers(DeStrategy strategy);
+bool DeIsExponential(DeStrategy strategy);
 
 }  // namespace evoslam
 

@@ -1,12 +1,29 @@
 #include "common/optim/population.h"
 
-#include <algorithm>
+#include <span>
 
 namespace evoslam {
 
 std::size_t Population::BestIndex() const {
-  return static_cast<std::size_t>(std::min_element(fitness.begin(), fitness.end()) -
-                                  fitness.begin());
+  std::size_t best = 0;
+  for (Eigen::Index i = 1; i < f.cols(); ++i) {
+    if (f(0, i) < f(0, static_cast<Eigen::Index>(best))) best = static_cast<std::size_t>(i);
+  }
+  return best;
+}
+
+std::size_t Population::WorstIndex() const {
+  std::size_t worst = 0;
+  for (Eigen::Index i = 1; i < f.cols(); ++i) {
+    if (f(0, i) >= f(0, static_cast<Eigen::Index>(worst))) worst = static_cast<std::size_t>(i);
+  }
+  return worst;
+}
+
+void EvaluateBatch(const Problem& problem, const Eigen::Ref<const Eigen::MatrixXd>& x,
+                   Eigen::MatrixXd& f) {
+  f.resize(static_cast<Eigen::Index>(problem.objectives()), x.cols());
+  problem.Evaluate(x, std::span<double>(f.data(), static_cast<std::size_t>(f.size())));
 }
 
 Population RandomPopulation(const Problem& problem, std::size_t size, Rng& rng) {
@@ -16,9 +33,9 @@ Population RandomPopulation(const Problem& problem, std::size_t size, Rng& rng) 
   pop.x.resize(lo.size(), static_cast<Eigen::Index>(size));
   for (Eigen::Index i = 0; i < pop.x.cols(); ++i) {
     for (Eigen::Index j = 0; j < pop.x.rows(); ++j) pop.x(j, i) = rng.Uniform(lo(j), hi(j));
+    Conform(problem, pop.x.col(i));
   }
-  pop.fitness.resize(size);
-  problem.Evaluate(pop.x, pop.fitness);
+  EvaluateBatch(problem, pop.x, pop.f);
   return pop;
 }
 

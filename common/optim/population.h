@@ -2,23 +2,32 @@
 #define EVOSLAM_COMMON_OPTIM_POPULATION_H_
 
 #include <cstddef>
-#include <vector>
 
 #include "common/optim/problem.h"
 #include "common/util/random.h"
 
 namespace evoslam {
 
-// Candidates as columns, with their fitness (minimised).
+// Candidates as columns, with their objective values as the matching columns of f (minimised).
 struct Population {
-  Eigen::MatrixXd x;
-  std::vector<double> fitness;
+  Eigen::MatrixXd x;  // dimension x size
+  Eigen::MatrixXd f;  // objectives x size
 
-  // The lowest fitness; the first such index on ties, so the choice is deterministic.
+  std::size_t size() const { return static_cast<std::size_t>(x.cols()); }
+
+  // The lowest first objective; the first such index on ties, so the choice is deterministic.
   std::size_t BestIndex() const;
+  // The highest first objective, last such index on ties (never the BestIndex of a population of
+  // two or more unless all are equal).
+  std::size_t WorstIndex() const;
 };
 
-// `size` candidates drawn uniformly in the problem's box, evaluated as one batch.
+// Evaluates the columns of x as one batch into f (resized to objectives x cols).
+void EvaluateBatch(const Problem& problem, const Eigen::Ref<const Eigen::MatrixXd>& x,
+                   Eigen::MatrixXd& f);
+
+// `size` candidates drawn uniformly in the problem's box and conformed to its encoding,
+// evaluated as one batch.
 Population RandomPopulation(const Problem& problem, std::size_t size, Rng& rng);
 
 }  // namespace evoslam

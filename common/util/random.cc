@@ -25,6 +25,14 @@ Rng::Rng(std::uint64_t seed) : seed_(seed) {
   }
 }
 
+RngState Rng::state() const { return RngState{seed_, {s_[0], s_[1], s_[2], s_[3]}}; }
+
+Rng Rng::FromState(const RngState& state) {
+  Rng rng(state.seed);
+  for (std::size_t i = 0; i < 4; ++i) rng.s_[i] = state.words[i];
+  return rng;
+}
+
 Rng Rng::Stream(std::uint64_t stream) const {
   return Rng(MixBits(seed_ ^ MixBits(stream + 0x632be59bd9b4e019ULL)));
 }

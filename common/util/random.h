@@ -1,10 +1,17 @@
 #ifndef EVOSLAM_COMMON_UTIL_RANDOM_H_
 #define EVOSLAM_COMMON_UTIL_RANDOM_H_
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 
 namespace evoslam {
+
+// Everything that determines a generator's future output; what a checkpoint stores.
+struct RngState {
+  std::uint64_t seed = 0;
+  std::array<std::uint64_t, 4> words{};
+};
 
 // A small, fast generator (xoshiro256**) with hand-written distributions, so that a seed gives the
 // same numbers with every compiler and standard library (std:: distributions are not portable).
@@ -24,6 +31,9 @@ class Rng {
   double Normal(double mean, double sigma);
 
   std::uint64_t seed() const { return seed_; }
+  RngState state() const;
+  // Continues exactly where the generator that gave `state` stood.
+  static Rng FromState(const RngState& state);
 
  private:
   std::uint64_t seed_;
