@@ -144,44 +144,46 @@ DifferentialEvolution::DifferentialEvolution(const DeParams& params) : params_(p
   ValidateDeParams(params_);
 }
 
-void DifferentialEvolution::DoStep(const Problem& problem, Rng& rng) {
+void BuildDeTrial(const Problem& problem, DeStrategy strategy, const Eigen::MatrixXd& x,
+                  std::size_t i, std::size_t best, double f, double cr, Rng& rng,
+                  Eigen::VectorXd& mutant, Eigen::Ref<Eigen::VectorXd> trial) {
   const Eigen::VectorXd& lo = problem.lower();
   const Eigen::VectorXd& hi = problem.upper();
-  const Eigen::MatrixXd& x = population_.x;
   const Eigen::Index dim = x.rows();
-  const Eigen::Index np = x.cols();
-  trials_.resize(dim, np);
-  const bool exponential = DeIsExponential(params_.strategy);
-  const std::size_t best = population_.BestIndex();
-  for (Eigen::Index i = 0; i < np; ++i) {
-    const auto ui = static_cast<std::size_t>(i);
-    const auto base =
-        static_cast<Eigen::Index>(Mutant(params_.strategy, x, ui, best, params_.f, rng, mutant_));
-    auto trial = trials_.col(i);
-    trial = x.col(i);
-    const Eigen::Index start =
-        static_cast<Eigen::Index>(rng.UniformIndex(static_cast<std::size_t>(dim)));
-    if (exponential) {
-      // A run of consecutive genes, starting at a random one, continued while rand < CR.
-      Eigen::Index len = 0;
-      do {
-        const Eigen::Index j = (start + len) % dim;
-        trial(j) = mutant_(j);
-        ++len;
-      } while (len < dim && rng.Uniform() < params_.cr);
-    } else {
-      for (Eigen::Index j = 0; j < dim; ++j) {
-        if (j == start || rng.Uniform() < params_.cr) trial(j) = mutant_(j);
-      }
-    }
+  const auto base = static_cast<Eigen::Index>(Mutant(strategy, x, i, best, f, rng, mutant));
+  trial = x.col(static_cast<Eigen::Index>(i));
+  const Eigen::Index start =
+      static_cast<Eigen::Index>(rng.UniformIndex(static_cast<std::size_t>(dim)));
+  if (DeIsExponential(strategy)) {
+    // A run of consecutive genes, starting at a random one, continued while rand < CR.
+    Eigen::Index len = 0;
+    do {
+      const Eigen::Index j = (start + len) % dim;
+      trial(j) = mutant(j);
+      ++len;
+    } while (len < dim && rng.Uniform() < cr);
+  } else {
     for (Eigen::Index j = 0; j < dim; ++j) {
-      if (trial(j) < lo(j)) trial(j) = 0.5 * (x(j, base) + lo(j));
-      if (trial(j) > hi(j)) trial(j) = 0.5 * (x(j, base) + hi(j));
+      if (j == start || rng.Uniform() < cr) trial(j) = mutant(j);
     }
-    if (problem.encoding() != Encoding::kReal) Conform(problem, trial);
+  }
+  for (Eigen::Index j = 0; j < dim; ++j) {
+    if (trial(j) < lo(j)) trial(j) = 0.5 * (x(j, base) + lo(j));
+    if (trial(j) > hi(j)) trial(j) = 0.5 * (x(j, base) + hi(j));
+  }
+  if (problem.encoding() != Encoding::kReal) Conform(problem, trial);
+}
+
+void DifferentialEvolution::DoStep(const Problem& problem, Rng& rng) {
+  const Eigen::MatrixXd& x = population_.x;
+  trials_.resize(x.rows(), x.cols());
+  const std::size_t best = population_.BestIndex();
+  for (Eigen::Index i = 0; i < x.cols(); ++i) {
+    BuildDeTrial(problem, params_.strategy, x, static_cast<std::size_t>(i), best, params_.f,
+                 params_.cr, rng, mutant_, trials_.col(i));
   }
   Evaluate(problem, trials_, trial_f_);
-  for (Eigen::Index i = 0; i < np; ++i) {
+  for (Eigen::Index i = 0; i < x.cols(); ++i) {
     if (trial_f_(0, i) <= population_.f(0, i)) {
       population_.x.col(i) = trials_.col(i);
       population_.f.col(i) = trial_f_.col(i);

@@ -64,6 +64,12 @@ class DifferentialEvolution : public Algorithm {
   Eigen::VectorXd mutant_;
 };
 
+// Builds the trial vector for target i of population x: the strategy's mutant (written to
+// `mutant`), crossed over with x_i, pulled back into the box and conformed to the encoding.
+void BuildDeTrial(const Problem& problem, DeStrategy strategy, const Eigen::MatrixXd& x,
+                  std::size_t i, std::size_t best, double f, double cr, Rng& rng,
+                  Eigen::VectorXd& mutant, Eigen::Ref<Eigen::VectorXd> trial);
+
 // How many random population members a strategy's mutant uses besides the target and the best.
 std::size_t DeRandomMembers(DeStrategy strategy);
 bool DeIsExponential(DeStrategy strategy);
