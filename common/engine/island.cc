@@ -1,0 +1,39 @@
+#include "common/engine/island.h"
+
+#include <chrono>
+
+#include "common/optim/evolve.h"
+
+namespace evoslam {
+
+Island::Island(const AlgorithmSpec& spec, const StopCriteria& stop, Rng rng)
+    : spec_(spec), algorithm_(MakeAlgorithm(spec)), tracker_(stop), rng_(rng) {}
+
+Island Island::FromCheckpoint(const IslandCheckpoint& checkpoint) {
+  Island island(checkpoint.algorithm, checkpoint.stop, Rng::FromState(checkpoint.rng));
+  island.algorithm_->Restore(checkpoint.state);
+  island.tracker_ = StopTracker(checkpoint.stop, checkpoint.progress);
+  island.stopped_ = checkpoint.stopped;
+  return island;
+}
+
+void Island::Start(const Problem& problem) {
+  const auto start = std::chrono::steady_clock::now();
+  algorithm_->Initialize(problem, rng_);
+  tracker_ = StopTracker(tracker_.criteria());
+  tracker_.Update(*algorithm_,
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  stopped_ = tracker_.Check(*algorithm_);
+}
+
+std::optional<StopReason> Island::Evolve(const Problem& problem, std::size_t generations) {
+  if (!stopped_) stopped_ = Advance(problem, *algorithm_, tracker_, rng_, generations);
+  return stopped_;
+}
+
+IslandCheckpoint Island::Checkpoint() const {
+  return IslandCheckpoint{spec_,        tracker_.criteria(), algorithm_->Save(),
+                          rng_.state(), tracker_.progress(), stopped_};
+}
+
+}  // namespace evoslam
