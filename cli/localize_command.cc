@@ -32,6 +32,9 @@ struct LocalizeArgs {
   std::size_t pop = 25, gen = 25, max_scans = 0;
   double f = 0.6, cr = 0.9, window = 0.6, heading_window = 30.0, heading_step = 0.5;
   PsoParams pso;
+  std::string pso_neighbourhood = "global";
+  std::size_t islands = 4, migration_interval = 5, migrants = 1;
+  std::string island_algorithm = "de", topology = "ring", migration_policy = "best-replace-worst";
   double exhaustive_step = 0.01, max_range = 0.0, grid_resolution = 0.05;
   std::uint64_t seed = 1;
   bool use_odometry = false, lenient = false;
@@ -58,16 +61,25 @@ LocalizeOptions OptionsFrom(const LocalizeArgs& a) try {
   EstimatorParams& e = options.estimator;
   e.fitness.kind = ParseFitnessKind(a.fitness);
   e.estimator = ParseEstimatorKind(a.estimator);
-  e.optimizer = ParseOptimizerKind(a.optimizer);
-  e.de.strategy = ParseDeStrategy(a.strategy);
-  e.de.population = e.pso.particles = a.pop;
+  e.optimizer = ParseOptimizer(a.optimizer, e.algorithm);
+  if (e.optimizer == OptimizerKind::kIsland)
+    e.algorithm.kind = ParseAlgorithmKind(a.island_algorithm);
+  AlgorithmSpec& s = e.algorithm;
+  s.de.strategy = ParseDeStrategy(a.strategy);
+  s.de.population = s.jde.population = s.pso.particles = a.pop;
+  s.de.f = a.f;
+  s.de.cr = a.cr;
+  s.pso.inertia = a.pso.inertia;
+  s.pso.c1 = a.pso.c1;
+  s.pso.c2 = a.pso.c2;
+  s.pso.vmax_fraction = a.pso.vmax_fraction;
+  s.pso.neighbourhood = ParsePsoNeighbourhood(a.pso_neighbourhood);
   e.generations = a.gen;
-  e.de.f = a.f;
-  e.de.cr = a.cr;
-  e.pso.inertia = a.pso.inertia;
-  e.pso.c1 = a.pso.c1;
-  e.pso.c2 = a.pso.c2;
-  e.pso.vmax_fraction = a.pso.vmax_fraction;
+  e.islands = a.islands;
+  e.migration.interval = a.migration_interval;
+  e.migration.migrants = a.migrants;
+  e.migration.topology = ParseTopology(a.topology);
+  e.migration.policy = ParseMigrationPolicy(a.migration_policy);
   e.window = a.window;
   e.heading_half_window = a.heading_window * kDeg;
   e.heading_step = a.heading_step * kDeg;
@@ -138,6 +150,15 @@ void Run(const LocalizeArgs& a) {
   p.set_pso_c1(a.pso.c1);
   p.set_pso_c2(a.pso.c2);
   p.set_pso_vmax_fraction(a.pso.vmax_fraction);
+  p.set_pso_neighbourhood(a.pso_neighbourhood);
+  if (options.estimator.optimizer == OptimizerKind::kIsland) {
+    p.set_islands(static_cast<std::uint32_t>(a.islands));
+    p.set_island_algorithm(a.island_algorithm);
+    p.set_migration_interval(static_cast<std::uint32_t>(a.migration_interval));
+    p.set_migrants(static_cast<std::uint32_t>(a.migrants));
+    p.set_topology(a.topology);
+    p.set_migration_policy(a.migration_policy);
+  }
   p.set_window_m(a.window);
   p.set_heading_window_deg(a.heading_window);
   p.set_heading_step_deg(a.heading_step);
@@ -211,10 +232,12 @@ void AddLocalizeCommand(CLI::App& app) {
       ->check(CLI::IsMember({"f3", "f2"}));
   cmd->add_option("--estimator", a->estimator, "2d (heading by brute force) or 3d")
       ->check(CLI::IsMember({"2d", "3d"}));
-  cmd->add_option("--optimizer", a->optimizer, "de, pso or exhaustive")
-      ->check(CLI::IsMember({"de", "pso", "exhaustive"}));
+  cmd->add_option("--optimizer", a->optimizer,
+                  "an engine algorithm (de, jde, pso, ...), island (an island model of "
+                  "--island-algorithm) or exhaustive")
+      ->check(CLI::IsMember(OptimizerNames()));
   cmd->add_option("--strategy", a->strategy, "DE strategy, e.g. rand1exp, best1bin");
-  cmd->add_option("--pop", a->pop, "population (DE) or particles (PSO)")
+  cmd->add_option("--pop", a->pop, "population, or particles (PSO); per island with islands")
       ->check(CLI::Range(2, 100000));
   cmd->add_option("--gen", a->gen, "generations")->check(CLI::Range(1, 1000000));
   cmd->add_option("--F", a->f, "DE differential weight")->check(CLI::Range(0.0, 2.0));
@@ -227,6 +250,24 @@ void AddLocalizeCommand(CLI::App& app) {
   cmd->add_option("--vmax", a->pso.vmax_fraction,
                   "PSO velocity clamp per coordinate, as a fraction of the window")
       ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--pso-neighbourhood", a->pso_neighbourhood,
+                  "PSO: follow the swarm's best (global) or the best of two ring neighbours")
+      ->check(CLI::IsMember({"global", "ring"}));
+  cmd->add_option("--islands", a->islands, "--optimizer island: number of islands")
+      ->check(CLI::Range(1, 4096));
+  cmd->add_option("--island-algorithm", a->island_algorithm,
+                  "--optimizer island: the algorithm every island runs")
+      ->check(CLI::IsMember(AlgorithmKindNames()));
+  cmd->add_option("--migration-interval", a->migration_interval,
+                  "--optimizer island: generations between migrations")
+      ->check(CLI::Range(1, 1000000));
+  cmd->add_option("--migrants", a->migrants, "--optimizer island: migrants per island")
+      ->check(CLI::Range(0, 100000));
+  cmd->add_option("--topology", a->topology, "--optimizer island: who sends migrants to whom")
+      ->check(CLI::IsMember({"ring", "fully-connected", "star", "random"}));
+  cmd->add_option("--migration-policy", a->migration_policy,
+                  "--optimizer island: which individuals leave and which they replace")
+      ->check(CLI::IsMember({"best-replace-worst", "random-replace"}));
   cmd->add_option("--window", a->window, "side of the square search window, m")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--heading-window", a->heading_window, "heading search half-width, degrees")

@@ -103,7 +103,7 @@ TEST_F(CliTest, MalformedLogNamesFileAndLine) {
 // do not exist); bad files exit with 1.
 TEST_F(CliTest, BadFlagsAreRefused) {
   const std::string localize = "localize --map m --log l --out " + Path("o");
-  const Result optimizer = RunCli(localize + " --optimizer sga");
+  const Result optimizer = RunCli(localize + " --optimizer simplex");
   EXPECT_EQ(optimizer.status, 2);
   EXPECT_NE(optimizer.output.find("--optimizer"), std::string::npos) << optimizer.output;
   EXPECT_EQ(RunCli(localize + " --CR 1.5").status, 2);

@@ -1,8 +1,10 @@
 #include "common/localization/pose_estimator.h"
 
 #include <cmath>
+#include <memory>
 #include <string>
 
+#include "common/engine/archipelago.h"
 #include "common/localization/scan_match_problem.h"
 #include "common/optim/evolve.h"
 #include "common/optim/exhaustive_search.h"
@@ -20,23 +22,25 @@ std::string_view EstimatorKindName(EstimatorKind kind) {
   return kind == EstimatorKind::k2D ? "2d" : "3d";
 }
 
-OptimizerKind ParseOptimizerKind(std::string_view name) {
-  if (name == "de") return OptimizerKind::kDe;
-  if (name == "pso") return OptimizerKind::kPso;
+OptimizerKind ParseOptimizer(std::string_view name, AlgorithmSpec& algorithm) {
+  if (name == "island") return OptimizerKind::kIsland;
   if (name == "exhaustive") return OptimizerKind::kExhaustive;
-  throw Error("unknown optimizer '" + std::string(name) + "' (expected de, pso or exhaustive)");
+  for (const auto& n : AlgorithmKindNames()) {
+    if (n == name) {
+      algorithm.kind = ParseAlgorithmKind(name);
+      return OptimizerKind::kAlgorithm;
+    }
+  }
+  std::string valid;
+  for (const auto& n : OptimizerNames()) valid += (valid.empty() ? "" : ", ") + n;
+  throw Error("unknown optimizer '" + std::string(name) + "' (expected one of: " + valid + ")");
 }
 
-std::string_view OptimizerKindName(OptimizerKind kind) {
-  switch (kind) {
-    case OptimizerKind::kDe:
-      return "de";
-    case OptimizerKind::kPso:
-      return "pso";
-    case OptimizerKind::kExhaustive:
-      return "exhaustive";
-  }
-  return "unknown";
+std::vector<std::string> OptimizerNames() {
+  std::vector<std::string> names = AlgorithmKindNames();
+  names.emplace_back("island");
+  names.emplace_back("exhaustive");
+  return names;
 }
 
 void ValidateEstimatorParams(const EstimatorParams& params) {
@@ -47,14 +51,14 @@ void ValidateEstimatorParams(const EstimatorParams& params) {
   if (!(params.heading_step > 0.0)) throw Error("heading step must be positive");
   if (!(params.exhaustive_step > 0.0)) throw Error("exhaustive step must be positive");
   if (params.generations == 0) throw Error("generations must be at least 1");
-  if (params.optimizer == OptimizerKind::kDe && params.de.population < 4) {
-    throw Error("DE population must be at least 4");
-  }
-  if (params.optimizer == OptimizerKind::kPso && params.pso.particles < 2) {
-    throw Error("PSO needs at least 2 particles");
-  }
-  if (params.optimizer == OptimizerKind::kPso && !(params.pso.vmax_fraction > 0.0)) {
-    throw Error("PSO velocity clamp must be positive, or particles never move");
+  if (params.optimizer == OptimizerKind::kExhaustive) return;
+  MakeAlgorithm(params.algorithm);  // throws on parameters the algorithm cannot work with
+  if (params.optimizer == OptimizerKind::kIsland) {
+    IslandModelParams island;
+    island.islands = params.islands;
+    island.algorithm = params.algorithm;
+    island.migration = params.migration;
+    ValidateIslandModelParams(island);
   }
 }
 
@@ -65,13 +69,18 @@ OptimResult Optimize(const Problem& problem, const EstimatorParams& params,
   StopCriteria stop;
   stop.max_generations = params.generations;
   switch (params.optimizer) {
-    case OptimizerKind::kDe: {
-      DifferentialEvolution de(params.de);
-      return Minimize(problem, de, stop, rng);
+    case OptimizerKind::kAlgorithm: {
+      const std::unique_ptr<Algorithm> algorithm = MakeAlgorithm(params.algorithm);
+      return Minimize(problem, *algorithm, stop, rng);
     }
-    case OptimizerKind::kPso: {
-      ParticleSwarm pso(params.pso);
-      return Minimize(problem, pso, stop, rng);
+    case OptimizerKind::kIsland: {
+      IslandModelParams island;
+      island.islands = params.islands;
+      island.algorithm = params.algorithm;
+      island.migration = params.migration;
+      Archipelago archipelago(island, stop, rng.NextU64());
+      archipelago.Run(problem);
+      return archipelago.Best();
     }
     case OptimizerKind::kExhaustive:
       return RunExhaustiveSearch(problem, steps);

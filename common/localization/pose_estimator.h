@@ -2,12 +2,14 @@
 #define EVOSLAM_COMMON_LOCALIZATION_POSE_ESTIMATOR_H_
 
 #include <cstddef>
+#include <string>
 #include <string_view>
+#include <vector>
 
+#include "common/engine/algorithm_spec.h"
+#include "common/engine/migration.h"
 #include "common/localization/range_renderer.h"
 #include "common/localization/scan_fitness.h"
-#include "common/optim/differential_evolution.h"
-#include "common/optim/particle_swarm.h"
 #include "common/sensor/laser_scan.h"
 #include "common/transform/pose2.h"
 #include "common/util/random.h"
@@ -20,17 +22,23 @@ enum class EstimatorKind { k2D, k3D };
 EstimatorKind ParseEstimatorKind(std::string_view name);  // "2d" | "3d"
 std::string_view EstimatorKindName(EstimatorKind kind);
 
-enum class OptimizerKind { kDe, kPso, kExhaustive };
-OptimizerKind ParseOptimizerKind(std::string_view name);  // "de" | "pso" | "exhaustive"
-std::string_view OptimizerKindName(OptimizerKind kind);
+// An engine algorithm on its own (its kind in EstimatorParams::algorithm), an island model of
+// that algorithm, or the exhaustive lattice search used as a reference.
+enum class OptimizerKind { kAlgorithm, kIsland, kExhaustive };
+
+// "de", "jde", "pso", ... (an engine algorithm), "island" or "exhaustive". For an algorithm name
+// the kind is also written to `algorithm`.
+OptimizerKind ParseOptimizer(std::string_view name, AlgorithmSpec& algorithm);
+std::vector<std::string> OptimizerNames();
 
 struct EstimatorParams {
   FitnessParams fitness;
   EstimatorKind estimator = EstimatorKind::k2D;
-  OptimizerKind optimizer = OptimizerKind::kDe;
-  DeParams de;
-  PsoParams pso;
+  OptimizerKind optimizer = OptimizerKind::kAlgorithm;
+  AlgorithmSpec algorithm;  // alone, or on every island
   std::size_t generations = 25;
+  std::size_t islands = 4;
+  MigrationParams migration;
   double window = 0.6;  // square search window's side, m
   double heading_half_window = 30.0 * 3.14159265358979323846 / 180.0;  // rad
   double heading_step = 0.5 * 3.14159265358979323846 / 180.0;          // rad

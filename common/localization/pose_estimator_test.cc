@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <tuple>
 
 #include "common/localization/localizer.h"
@@ -17,7 +18,7 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180;
 
-using Combo = std::tuple<FitnessKind, EstimatorKind, OptimizerKind>;
+using Combo = std::tuple<FitnessKind, EstimatorKind, std::string>;
 
 class EstimatePoseTest : public ::testing::TestWithParam<Combo> {};
 
@@ -31,12 +32,13 @@ TEST_P(EstimatePoseTest, FindsTruePoseInWindow) {
   EstimatorParams params;
   params.fitness.kind = fitness;
   params.estimator = estimator;
-  params.optimizer = optimizer;
+  params.optimizer = ParseOptimizer(optimizer, params.algorithm);
   params.heading_half_window = 10 * kDeg;
   if (estimator == EstimatorKind::k3D) {
     // A 3D search needs a larger budget (the papers' observation); exhaustive in 3D is slow, so
     // its lattice is coarser here.
-    params.de.population = params.pso.particles = 40;
+    params.algorithm.de.population = params.algorithm.jde.population = 40;
+    params.algorithm.pso.particles = 40;
     params.generations = 60;
     params.exhaustive_step = 0.02;
   }
@@ -57,8 +59,7 @@ INSTANTIATE_TEST_SUITE_P(
     AllCombinations, EstimatePoseTest,
     ::testing::Combine(::testing::Values(FitnessKind::kF3, FitnessKind::kF2),
                        ::testing::Values(EstimatorKind::k2D, EstimatorKind::k3D),
-                       ::testing::Values(OptimizerKind::kDe, OptimizerKind::kPso,
-                                         OptimizerKind::kExhaustive)));
+                       ::testing::Values("de", "jde", "pso", "island", "exhaustive")));
 
 TEST(EstimatePoseTest, ExhaustiveCountsEveryLatticePoint) {
   const LineMap map = testing::BoxRoom();
@@ -85,11 +86,15 @@ TEST(EstimatorParamsTest, RejectsBadValues) {
   p.heading_half_window = 4;
   EXPECT_THROW(ValidateEstimatorParams(p), Error);
   p = {};
-  p.optimizer = OptimizerKind::kPso;
+  p.optimizer = ParseOptimizer("pso", p.algorithm);
   EXPECT_NO_THROW(ValidateEstimatorParams(p));
-  p.pso.vmax_fraction = 0;
+  p.algorithm.pso.vmax_fraction = 0;
   EXPECT_THROW(ValidateEstimatorParams(p), Error);
-  EXPECT_THROW(ParseOptimizerKind("sga"), Error);
+  p = {};
+  p.optimizer = OptimizerKind::kIsland;
+  p.migration.migrants = p.algorithm.de.population;
+  EXPECT_THROW(ValidateEstimatorParams(p), Error);
+  EXPECT_THROW(ParseOptimizer("simplex", p.algorithm), Error);
   EXPECT_THROW(ParseEstimatorKind("4d"), Error);
 }
 

@@ -63,7 +63,12 @@ std::string FormatSummary(const proto::LocalizeReport& r) {
   s.precision(2);
   s << "localized " << r.scans() << " scans of " << p.log() << " in " << p.map() << "\n";
   s << "  " << p.fitness() << ", " << p.estimator() << " estimator, " << p.optimizer();
-  if (p.optimizer() == "de") s << " " << p.strategy();
+  if (p.optimizer() == "island") {
+    s << " of " << p.islands() << " " << p.island_algorithm() << " islands (" << p.topology()
+      << ", " << p.migrants() << " migrants every " << p.migration_interval() << " generations)";
+  }
+  if (p.optimizer() == "de" || (p.optimizer() == "island" && p.island_algorithm() == "de"))
+    s << " " << p.strategy();
   if (p.optimizer() != "exhaustive") {
     s << " (population " << p.population() << ", generations " << p.generations() << ")";
   }
