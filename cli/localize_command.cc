@@ -5,11 +5,14 @@
 #include <cstdio>
 #include <fstream>
 #include <numbers>
+#include <set>
 #include <sstream>
 #include <string>
 
 #include "cli/commands.h"
 #include "cli/option_parsing.h"
+#include "common/engine/engine_proto.h"
+#include "common/engine/presets.h"
 #include "common/eval/trajectory_errors.h"
 #include "common/grid/map_io.h"
 #include "common/io/carmen_reader.h"
@@ -35,6 +38,8 @@ struct LocalizeArgs {
   std::string pso_neighbourhood = "global";
   std::size_t islands = 4, migration_interval = 5, migrants = 1;
   std::string island_algorithm = "de", topology = "ring", migration_policy = "best-replace-worst";
+  std::string preset;
+  std::set<std::string> given;  // options set on the command line, which override a preset
   double exhaustive_step = 0.01, max_range = 0.0, grid_resolution = 0.05;
   std::uint64_t seed = 1;
   bool use_odometry = false, lenient = false;
@@ -61,20 +66,28 @@ LocalizeOptions OptionsFrom(const LocalizeArgs& a) try {
   EstimatorParams& e = options.estimator;
   e.fitness.kind = ParseFitnessKind(a.fitness);
   e.estimator = ParseEstimatorKind(a.estimator);
-  e.optimizer = ParseOptimizer(a.optimizer, e.algorithm);
-  if (e.optimizer == OptimizerKind::kIsland)
+  // A preset supplies the algorithm and its settings; options given explicitly override them.
+  const bool preset = !a.preset.empty();
+  const auto use = [&](const char* option) { return !preset || a.given.contains(option); };
+  if (preset) {
+    const Preset& p = FindPreset(a.preset);
+    e.algorithm = p.algorithm;
+    e.generations = p.stop.max_generations;
+  }
+  if (use("--optimizer")) e.optimizer = ParseOptimizer(a.optimizer, e.algorithm);
+  if (e.optimizer == OptimizerKind::kIsland && use("--island-algorithm"))
     e.algorithm.kind = ParseAlgorithmKind(a.island_algorithm);
   AlgorithmSpec& s = e.algorithm;
-  s.de.strategy = ParseDeStrategy(a.strategy);
-  s.de.population = s.jde.population = s.pso.particles = a.pop;
-  s.de.f = a.f;
-  s.de.cr = a.cr;
-  s.pso.inertia = a.pso.inertia;
-  s.pso.c1 = a.pso.c1;
-  s.pso.c2 = a.pso.c2;
-  s.pso.vmax_fraction = a.pso.vmax_fraction;
-  s.pso.neighbourhood = ParsePsoNeighbourhood(a.pso_neighbourhood);
-  e.generations = a.gen;
+  if (use("--strategy")) s.de.strategy = ParseDeStrategy(a.strategy);
+  if (use("--pop")) s.de.population = s.jde.population = s.pso.particles = a.pop;
+  if (use("--F")) s.de.f = a.f;
+  if (use("--CR")) s.de.cr = a.cr;
+  if (use("--w")) s.pso.inertia = a.pso.inertia;
+  if (use("--c1")) s.pso.c1 = a.pso.c1;
+  if (use("--c2")) s.pso.c2 = a.pso.c2;
+  if (use("--vmax")) s.pso.vmax_fraction = a.pso.vmax_fraction;
+  if (use("--pso-neighbourhood")) s.pso.neighbourhood = ParsePsoNeighbourhood(a.pso_neighbourhood);
+  if (use("--gen")) e.generations = a.gen;
   e.islands = a.islands;
   e.migration.interval = a.migration_interval;
   e.migration.migrants = a.migrants;
@@ -140,20 +153,26 @@ void Run(const LocalizeArgs& a) {
   p.set_log(a.log);
   p.set_fitness(a.fitness);
   p.set_estimator(a.estimator);
-  p.set_optimizer(a.optimizer);
-  p.set_strategy(a.strategy);
-  p.set_population(static_cast<std::uint32_t>(a.pop));
-  p.set_generations(static_cast<std::uint32_t>(a.gen));
-  p.set_f(a.f);
-  p.set_cr(a.cr);
-  p.set_pso_inertia(a.pso.inertia);
-  p.set_pso_c1(a.pso.c1);
-  p.set_pso_c2(a.pso.c2);
-  p.set_pso_vmax_fraction(a.pso.vmax_fraction);
-  p.set_pso_neighbourhood(a.pso_neighbourhood);
-  if (options.estimator.optimizer == OptimizerKind::kIsland) {
+  // The effective settings, after any preset, so the report says what actually ran.
+  const EstimatorParams& e = options.estimator;
+  p.set_optimizer(e.optimizer == OptimizerKind::kAlgorithm
+                      ? std::string(AlgorithmKindName(e.algorithm.kind))
+                      : a.optimizer);
+  p.set_preset(a.preset);
+  p.set_strategy(std::string(DeStrategyName(e.algorithm.de.strategy)));
+  p.set_population(static_cast<std::uint32_t>(PopulationSize(e.algorithm)));
+  p.set_generations(static_cast<std::uint32_t>(e.generations));
+  p.set_f(e.algorithm.de.f);
+  p.set_cr(e.algorithm.de.cr);
+  p.set_pso_inertia(e.algorithm.pso.inertia);
+  p.set_pso_c1(e.algorithm.pso.c1);
+  p.set_pso_c2(e.algorithm.pso.c2);
+  p.set_pso_vmax_fraction(e.algorithm.pso.vmax_fraction);
+  p.set_pso_neighbourhood(std::string(PsoNeighbourhoodName(e.algorithm.pso.neighbourhood)));
+  if (e.optimizer != OptimizerKind::kExhaustive) *p.mutable_algorithm() = ToProto(e.algorithm);
+  if (e.optimizer == OptimizerKind::kIsland) {
     p.set_islands(static_cast<std::uint32_t>(a.islands));
-    p.set_island_algorithm(a.island_algorithm);
+    p.set_island_algorithm(std::string(AlgorithmKindName(e.algorithm.kind)));
     p.set_migration_interval(static_cast<std::uint32_t>(a.migration_interval));
     p.set_migrants(static_cast<std::uint32_t>(a.migrants));
     p.set_topology(a.topology);
@@ -236,6 +255,10 @@ void AddLocalizeCommand(CLI::App& app) {
                   "an engine algorithm (de, jde, pso, ...), island (an island model of "
                   "--island-algorithm) or exhaustive")
       ->check(CLI::IsMember(OptimizerNames()));
+  cmd->add_option("--preset", a->preset,
+                  "start from a paper's settings (see docs/engine.md); options given as well "
+                  "override them")
+      ->check(CLI::IsMember(PresetNames()));
   cmd->add_option("--strategy", a->strategy, "DE strategy, e.g. rand1exp, best1bin");
   cmd->add_option("--pop", a->pop, "population, or particles (PSO); per island with islands")
       ->check(CLI::Range(2, 100000));
@@ -286,7 +309,12 @@ void AddLocalizeCommand(CLI::App& app) {
       ->check(CLI::Range(1, 1024));
   cmd->add_flag("--lenient", a->lenient, "skip malformed log lines");
   cmd->add_option("--out", a->out, "output directory")->required();
-  cmd->callback([a] { Run(*a); });
+  cmd->callback([a, cmd] {
+    for (const CLI::Option* option : cmd->get_options()) {
+      if (option->count() > 0) a->given.insert(option->get_name());
+    }
+    Run(*a);
+  });
 }
 
 }  // namespace evoslam::cli

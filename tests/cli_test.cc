@@ -82,6 +82,31 @@ TEST_F(CliTest, SimulateThenLocalizeWritesEveryOutput) {
   EXPECT_EQ(sa.str(), sb.str());
 }
 
+std::string ReadAll(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A preset sets the algorithm and its settings; an option given as well overrides just itself.
+TEST_F(CliTest, PresetsSetTheAlgorithmAndOptionsOverrideThem) {
+  ASSERT_EQ(
+      RunCli("simulate --world s-corridor --max-scans 5 --seed 1 --out " + Path("sim")).status, 0);
+  const std::string localize =
+      "localize --map " + Path("sim/world.lines") + " --log " + Path("sim/log.clf");
+  const Result plain = RunCli(localize + " --preset pso-003 --out " + Path("a"));
+  ASSERT_EQ(plain.status, 0) << plain.output;
+  const std::string a = ReadAll(dir_ / "a" / "report.json");
+  EXPECT_NE(a.find("\"particles\": 50"), std::string::npos) << a;
+  EXPECT_NE(a.find("\"preset\": \"pso-003\""), std::string::npos) << a;
+  const Result overridden = RunCli(localize + " --preset pso-003 --pop 12 --out " + Path("b"));
+  ASSERT_EQ(overridden.status, 0) << overridden.output;
+  const std::string b = ReadAll(dir_ / "b" / "report.json");
+  EXPECT_NE(b.find("\"particles\": 12"), std::string::npos) << b;
+  EXPECT_NE(b.find("\"optimizer\": \"pso\""), std::string::npos) << b;
+}
+
 TEST_F(CliTest, MissingFileIsAClearError) {
   const Result r = RunCli("info " + Path("nope.clf"));
   EXPECT_EQ(r.status, 1);
@@ -116,6 +141,11 @@ TEST_F(CliTest, BadFlagsAreRefused) {
   EXPECT_NE(start.output.find("--start"), std::string::npos) << start.output;
   EXPECT_EQ(RunCli(localize + " --map-from-log l2").status, 2);
   EXPECT_EQ(RunCli(localize + " --optimizer de --pop 3").status, 2);
+  EXPECT_EQ(RunCli(localize + " --preset de-999").status, 2);
+  const Result migrants = RunCli(localize + " --optimizer island --pop 10 --migrants 10");
+  EXPECT_EQ(migrants.status, 2);
+  EXPECT_NE(migrants.output.find("migrants"), std::string::npos) << migrants.output;
+  EXPECT_EQ(RunCli(localize + " --optimizer island --topology torus").status, 2);
   EXPECT_EQ(RunCli("eval " + Path("t.txt")).status, 2);
   EXPECT_EQ(RunCli("simulate --world atlantis --out " + Path("o")).status, 2);
   EXPECT_EQ(RunCli("simulate --world s-corridor --world-file w --out " + Path("o")).status, 2);
