@@ -133,11 +133,14 @@ TEST(LocalizeTest, TracksAWalkWithoutOdometry) {
   EXPECT_EQ(r.evaluations, 30u * 25u * 26u);
 }
 
-TEST(LocalizeTest, SameBitsWithOneAndTwoThreads) {
+class LocalizeThreadsTest : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(LocalizeThreadsTest, SameBitsWithOneAndTwoThreads) {
   const MapModel map(testing::BoxRoom());
   const Dataset d = WalkThroughBoxRoom(8);
   LocalizeOptions options;
   options.seed = 99;
+  options.estimator.optimizer = ParseOptimizer(GetParam(), options.estimator.algorithm);
   const int saved = omp_get_max_threads();
   omp_set_num_threads(1);
   const LocalizeResult one = Localize(map, d, options);
@@ -149,7 +152,11 @@ TEST(LocalizeTest, SameBitsWithOneAndTwoThreads) {
     EXPECT_EQ(one.trajectory[i].pose, two.trajectory[i].pose);
     EXPECT_EQ(one.fitness[i], two.fitness[i]);
   }
+  EXPECT_EQ(one.evaluations, two.evaluations);
 }
+
+INSTANTIATE_TEST_SUITE_P(Optimizers, LocalizeThreadsTest,
+                         ::testing::Values("de", "jde", "pso", "island"));
 
 TEST(LocalizeTest, OdometryCentringUsesTheOdometryIncrement) {
   // With the window centred on the prediction the walk is followed too, and a window too small
