@@ -36,6 +36,8 @@ struct LocalizeArgs {
   double f = 0.6, cr = 0.9, window = 0.6, heading_window = 30.0, heading_step = 0.5;
   PsoParams pso;
   std::string pso_neighbourhood = "global";
+  std::string crossover = "two-point";
+  double ga_grid = 0.01;
   std::size_t islands = 4, migration_interval = 5, migrants = 1;
   std::string island_algorithm = "de", topology = "ring", migration_policy = "best-replace-worst";
   std::string preset;
@@ -79,7 +81,9 @@ LocalizeOptions OptionsFrom(const LocalizeArgs& a) try {
     e.algorithm.kind = ParseAlgorithmKind(a.island_algorithm);
   AlgorithmSpec& s = e.algorithm;
   if (use("--strategy")) s.de.strategy = ParseDeStrategy(a.strategy);
-  if (use("--pop")) s.de.population = s.jde.population = s.pso.particles = a.pop;
+  if (use("--pop")) s.de.population = s.jde.population = s.pso.particles = s.ga.population = a.pop;
+  if (use("--crossover")) s.ga.crossover = ParseGaCrossover(a.crossover);
+  if (use("--ga-grid")) s.ga.grid_step = a.ga_grid;
   if (use("--F")) s.de.f = a.f;
   if (use("--CR")) s.de.cr = a.cr;
   if (use("--w")) s.pso.inertia = a.pso.inertia;
@@ -276,6 +280,11 @@ void AddLocalizeCommand(CLI::App& app) {
   cmd->add_option("--pso-neighbourhood", a->pso_neighbourhood,
                   "PSO: follow the swarm's best (global) or the best of two ring neighbours")
       ->check(CLI::IsMember({"global", "ring"}));
+  cmd->add_option("--crossover", a->crossover, "SGA and aGA: two-point or uniform crossover")
+      ->check(CLI::IsMember({"two-point", "uniform"}));
+  cmd->add_option("--ga-grid", a->ga_grid,
+                  "SGA and aGA: search grid of the binary chromosomes, m (0: none)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--islands", a->islands, "--optimizer island: number of islands")
       ->check(CLI::Range(1, 4096));
   cmd->add_option("--island-algorithm", a->island_algorithm,

@@ -97,7 +97,7 @@ TEST_P(StudyOptimizerTest, AccurateAt20cmNoise) {
 
 INSTANTIATE_TEST_SUITE_P(EnvironmentsAB, StudyOptimizerTest,
                          ::testing::Combine(::testing::Values("s-corridor", "static-objects"),
-                                            ::testing::Values("pso", "island")),
+                                            ::testing::Values("pso", "sga", "aga", "island")),
                          [](const auto& info) {
                            std::string name =
                                std::get<0>(info.param) + "_" + std::get<1>(info.param);

@@ -3,15 +3,19 @@
 #include <array>
 #include <utility>
 
+#include "common/optim/diploid_ga.h"
+#include "common/optim/simple_ga.h"
 #include "common/util/error.h"
 
 namespace evoslam {
 namespace {
 
-constexpr std::array<std::pair<AlgorithmKind, std::string_view>, 3> kNames = {{
+constexpr std::array<std::pair<AlgorithmKind, std::string_view>, 5> kNames = {{
     {AlgorithmKind::kDe, "de"},
     {AlgorithmKind::kJde, "jde"},
     {AlgorithmKind::kPso, "pso"},
+    {AlgorithmKind::kSga, "sga"},
+    {AlgorithmKind::kAga, "aga"},
 }};
 
 }  // namespace
@@ -46,6 +50,10 @@ std::unique_ptr<Algorithm> MakeAlgorithm(const AlgorithmSpec& spec) {
       return std::make_unique<SelfAdaptiveDe>(spec.jde);
     case AlgorithmKind::kPso:
       return std::make_unique<ParticleSwarm>(spec.pso);
+    case AlgorithmKind::kSga:
+      return std::make_unique<SimpleGa>(spec.ga);
+    case AlgorithmKind::kAga:
+      return std::make_unique<AdaptiveGa>(spec.ga);
   }
   throw Error("unknown algorithm kind");
 }
@@ -58,6 +66,9 @@ std::size_t PopulationSize(const AlgorithmSpec& spec) {
       return spec.jde.population;
     case AlgorithmKind::kPso:
       return spec.pso.particles;
+    case AlgorithmKind::kSga:
+    case AlgorithmKind::kAga:
+      return spec.ga.population;
   }
   return 0;
 }

@@ -8,12 +8,13 @@
 
 #include "common/optim/algorithm.h"
 #include "common/optim/differential_evolution.h"
+#include "common/optim/ga_params.h"
 #include "common/optim/particle_swarm.h"
 #include "common/optim/self_adaptive_de.h"
 
 namespace evoslam {
 
-enum class AlgorithmKind { kDe, kJde, kPso };
+enum class AlgorithmKind { kDe, kJde, kPso, kSga, kAga };
 
 // Names as on the command line and in checkpoints: "de", "jde", "pso", ...
 AlgorithmKind ParseAlgorithmKind(std::string_view name);  // throws Error listing the valid names
@@ -28,6 +29,7 @@ struct AlgorithmSpec {
   DeParams de;
   JdeParams jde;
   PsoParams pso;
+  GaParams ga;  // sga and aga
 };
 
 // Builds the algorithm; throws Error when its parameters cannot work.

@@ -62,6 +62,35 @@ Eigen::VectorXd Vector(const google::protobuf::RepeatedField<double>& v) {
   return out;
 }
 
+proto::GaSettings ToProto(const GaParams& p) {
+  proto::GaSettings out;
+  out.set_population(static_cast<std::uint32_t>(p.population));
+  out.set_bits(static_cast<std::uint32_t>(p.bits));
+  out.set_grid_step(p.grid_step);
+  out.set_crossover(std::string(GaCrossoverName(p.crossover)));
+  out.set_elite_fraction(p.elite_fraction);
+  out.set_pairs(static_cast<std::uint32_t>(p.pairs));
+  out.set_mutants(static_cast<std::uint32_t>(p.mutants));
+  out.set_mutation_box(p.mutation_box);
+  out.set_replaced(static_cast<std::uint32_t>(p.replaced));
+  return out;
+}
+
+GaParams FromProto(const proto::GaSettings& p) {
+  GaParams out;
+  out.population = p.population();
+  if (p.bits() > 64) throw Error("engine message: GA bits out of range");
+  out.bits = static_cast<int>(p.bits());
+  out.grid_step = p.grid_step();
+  out.crossover = ParseGaCrossover(p.crossover());
+  out.elite_fraction = p.elite_fraction();
+  out.pairs = p.pairs();
+  out.mutants = p.mutants();
+  out.mutation_box = p.mutation_box();
+  out.replaced = p.replaced();
+  return out;
+}
+
 }  // namespace
 
 proto::Matrix ToProto(const Eigen::MatrixXd& m) {
@@ -119,6 +148,12 @@ proto::AlgorithmSettings ToProto(const AlgorithmSpec& spec) {
       p->set_neighbourhood(std::string(PsoNeighbourhoodName(spec.pso.neighbourhood)));
       break;
     }
+    case AlgorithmKind::kSga:
+      *out.mutable_sga() = ToProto(spec.ga);
+      break;
+    case AlgorithmKind::kAga:
+      *out.mutable_aga() = ToProto(spec.ga);
+      break;
   }
   return out;
 }
@@ -159,6 +194,14 @@ AlgorithmSpec FromProto(const proto::AlgorithmSettings& settings) {
       spec.pso.neighbourhood = ParsePsoNeighbourhood(p.neighbourhood());
       break;
     }
+    case proto::AlgorithmSettings::kSga:
+      spec.kind = AlgorithmKind::kSga;
+      spec.ga = FromProto(settings.sga());
+      break;
+    case proto::AlgorithmSettings::kAga:
+      spec.kind = AlgorithmKind::kAga;
+      spec.ga = FromProto(settings.aga());
+      break;
     default:
       throw Error("engine message: no algorithm, or one this build does not know");
   }

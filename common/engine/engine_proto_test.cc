@@ -24,6 +24,9 @@ std::vector<AlgorithmSpec> AllKinds() {
     s.jde.tau_f = 0.2;
     s.pso.particles = 11;
     s.pso.neighbourhood = PsoNeighbourhood::kRing;
+    s.ga.population = 17;
+    s.ga.crossover = GaCrossover::kUniform;
+    s.ga.grid_step = 0.25;
     specs.push_back(s);
   }
   return specs;

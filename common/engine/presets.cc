@@ -31,6 +31,19 @@ std::vector<Preset> MakePresets() {
     p.algorithm.pso.particles = 50;
     presets.push_back(p);
   }
+  for (const AlgorithmKind kind : {AlgorithmKind::kSga, AlgorithmKind::kAga}) {
+    const bool sga = kind == AlgorithmKind::kSga;
+    Preset p{sga ? "sga-003" : "aga-003",
+             std::string(sga ? "003: SGA" : "003: aGA (Moravec 2012), two chromosomes each") +
+                 ", 16 bits a coordinate on the 1 cm grid, two-point crossover of 5 pairs from "
+                 "the better half, 2 elitist mutants, the 8 worst replaced; population (20) and "
+                 "generations (50, about DE's budget) are illegible in our copy and ours",
+             {},
+             Generations(50)};
+    p.algorithm.kind = kind;
+    p.algorithm.ga.grid_step = 0.01;
+    presets.push_back(p);
+  }
   {
     Preset p{"pso-002-local",
              "002 local search: 10 particles, c1 = c2 = 2; w and the iteration count are not "

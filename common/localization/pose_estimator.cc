@@ -22,6 +22,12 @@ std::string_view EstimatorKindName(EstimatorKind kind) {
   return kind == EstimatorKind::k2D ? "2d" : "3d";
 }
 
+AlgorithmSpec LocalizationAlgorithmDefaults() {
+  AlgorithmSpec spec;
+  spec.ga.grid_step = 0.01;
+  return spec;
+}
+
 OptimizerKind ParseOptimizer(std::string_view name, AlgorithmSpec& algorithm) {
   if (name == "island") return OptimizerKind::kIsland;
   if (name == "exhaustive") return OptimizerKind::kExhaustive;

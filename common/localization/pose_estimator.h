@@ -31,11 +31,14 @@ enum class OptimizerKind { kAlgorithm, kIsland, kExhaustive };
 OptimizerKind ParseOptimizer(std::string_view name, AlgorithmSpec& algorithm);
 std::vector<std::string> OptimizerNames();
 
+// The engine's defaults, with the binary GAs on the papers' 1 cm search grid.
+AlgorithmSpec LocalizationAlgorithmDefaults();
+
 struct EstimatorParams {
   FitnessParams fitness;
   EstimatorKind estimator = EstimatorKind::k2D;
   OptimizerKind optimizer = OptimizerKind::kAlgorithm;
-  AlgorithmSpec algorithm;  // alone, or on every island
+  AlgorithmSpec algorithm = LocalizationAlgorithmDefaults();  // alone, or on every island
   std::size_t generations = 25;
   std::size_t islands = 4;
   MigrationParams migration;

@@ -38,7 +38,7 @@ TEST_P(EstimatePoseTest, FindsTruePoseInWindow) {
     // A 3D search needs a larger budget (the papers' observation); exhaustive in 3D is slow, so
     // its lattice is coarser here.
     params.algorithm.de.population = params.algorithm.jde.population = 40;
-    params.algorithm.pso.particles = 40;
+    params.algorithm.pso.particles = params.algorithm.ga.population = 40;
     params.generations = 60;
     params.exhaustive_step = 0.02;
   }
@@ -55,11 +55,12 @@ TEST_P(EstimatePoseTest, FindsTruePoseInWindow) {
   EXPECT_GT(e.evaluations, 0u);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    AllCombinations, EstimatePoseTest,
-    ::testing::Combine(::testing::Values(FitnessKind::kF3, FitnessKind::kF2),
-                       ::testing::Values(EstimatorKind::k2D, EstimatorKind::k3D),
-                       ::testing::Values("de", "jde", "pso", "island", "exhaustive")));
+INSTANTIATE_TEST_SUITE_P(AllCombinations, EstimatePoseTest,
+                         ::testing::Combine(::testing::Values(FitnessKind::kF3, FitnessKind::kF2),
+                                            ::testing::Values(EstimatorKind::k2D,
+                                                              EstimatorKind::k3D),
+                                            ::testing::Values("de", "jde", "pso", "sga", "aga",
+                                                              "island", "exhaustive")));
 
 TEST(EstimatePoseTest, ExhaustiveCountsEveryLatticePoint) {
   const LineMap map = testing::BoxRoom();
@@ -156,7 +157,7 @@ TEST_P(LocalizeThreadsTest, SameBitsWithOneAndTwoThreads) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Optimizers, LocalizeThreadsTest,
-                         ::testing::Values("de", "jde", "pso", "island"));
+                         ::testing::Values("de", "jde", "pso", "sga", "aga", "island"));
 
 TEST(LocalizeTest, OdometryCentringUsesTheOdometryIncrement) {
   // With the window centred on the prediction the walk is followed too, and a window too small

@@ -98,9 +98,8 @@ EVOSLAM_VECTOR_CLONES void AccumulateF3(const ShiftLayout& layout, const Observe
 }
 
 EVOSLAM_VECTOR_CLONES void AccumulateF2(const FitnessParams& params, const ShiftLayout& layout,
-                                        const ObservedBeams& observed,
-                                        std::span<const float> rays, float max_range,
-                                        std::span<float> sums) {
+                                        const ObservedBeams& observed, std::span<const float> rays,
+                                        float max_range, std::span<float> sums) {
   const std::size_t shifts = layout.shifts;
   const std::size_t stride = layout.shift_stride;
   float* __restrict acc = sums.data();
