@@ -19,6 +19,19 @@ Eigen::MatrixXd WithoutNan(const Eigen::Ref<const Eigen::MatrixXd>& f) {
   return clean;
 }
 
+// One pass over the objectives of two columns: +1 when a dominates b, -1 when b dominates a,
+// 0 otherwise. Raw pointers keep the n^2 comparisons cheap in unoptimised builds too.
+int CompareDominance(const double* a, const double* b, Eigen::Index objectives) {
+  bool a_better = false;
+  bool b_better = false;
+  for (Eigen::Index k = 0; k < objectives; ++k) {
+    if (a[k] < b[k]) a_better = true;
+    if (b[k] < a[k]) b_better = true;
+    if (a_better && b_better) return 0;
+  }
+  return a_better ? 1 : (b_better ? -1 : 0);
+}
+
 }  // namespace
 
 bool ParetoRanking::Before(std::size_t a, std::size_t b) const {
@@ -51,14 +64,15 @@ std::vector<std::size_t> NonDominatedRanks(const Eigen::Ref<const Eigen::MatrixX
   // dominated[p]: the columns p dominates; count[p]: how many columns dominate p.
   std::vector<std::vector<std::size_t>> dominated(n);
   std::vector<std::size_t> count(n, 0);
+  const Eigen::Index m = clean.rows();
   for (std::size_t p = 0; p < n; ++p) {
+    const double* fp = clean.data() + static_cast<Eigen::Index>(p) * m;
     for (std::size_t q = p + 1; q < n; ++q) {
-      const auto cp = clean.col(static_cast<Eigen::Index>(p));
-      const auto cq = clean.col(static_cast<Eigen::Index>(q));
-      if (Dominates(cp, cq)) {
+      const int order = CompareDominance(fp, clean.data() + static_cast<Eigen::Index>(q) * m, m);
+      if (order > 0) {
         dominated[p].push_back(q);
         ++count[q];
-      } else if (Dominates(cq, cp)) {
+      } else if (order < 0) {
         dominated[q].push_back(p);
         ++count[p];
       }
