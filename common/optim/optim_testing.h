@@ -7,6 +7,8 @@
 #include <omp.h>
 
 #include <cmath>
+#include <mutex>
+#include <vector>
 
 #include "common/optim/algorithm.h"
 #include "common/optim/evolve.h"
@@ -37,6 +39,56 @@ inline OptimResult RunFor(const Problem& problem, Algorithm& algorithm, std::siz
   return Minimize(problem, algorithm, stop, rng);
 }
 
+// Runs `algorithm` from `seed`: Initialize, then `generations` steps (any number of objectives).
+inline void RunGenerations(const Problem& problem, Algorithm& algorithm, std::size_t generations,
+                           std::uint64_t seed) {
+  Rng rng(seed);
+  algorithm.Initialize(problem, rng);
+  for (std::size_t g = 0; g < generations; ++g) algorithm.Step(problem, rng);
+}
+
+// Wraps a problem and keeps a copy of every batch it evaluates, so that a test can inspect the
+// candidates an algorithm makes.
+class RecordingProblem : public Problem {
+ public:
+  explicit RecordingProblem(const Problem& inner) : inner_(inner) {}
+  const Eigen::VectorXd& lower() const override { return inner_.lower(); }
+  const Eigen::VectorXd& upper() const override { return inner_.upper(); }
+  Encoding encoding() const override { return inner_.encoding(); }
+  std::size_t objectives() const override { return inner_.objectives(); }
+  const Immunity* immunity() const override { return inner_.immunity(); }
+  void Evaluate(const Eigen::Ref<const Eigen::MatrixXd>& candidates,
+                std::span<double> fitness) const override {
+    inner_.Evaluate(candidates, fitness);
+    const std::lock_guard<std::mutex> lock(mutex_);
+    batches_.emplace_back(candidates);
+  }
+  const std::vector<Eigen::MatrixXd>& batches() const { return batches_; }
+
+ private:
+  const Problem& inner_;
+  mutable std::mutex mutex_;
+  mutable std::vector<Eigen::MatrixXd> batches_;
+};
+
+// Runs `make()`'s algorithm for `generations` generations with one and with two OpenMP threads;
+// the final populations must be the same bits.
+template <typename Make>
+void ExpectSamePopulationWithOneAndTwoThreads(const Problem& problem, Make make,
+                                              std::size_t generations, std::uint64_t seed) {
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(1);
+  auto one = make();
+  RunGenerations(problem, *one, generations, seed);
+  omp_set_num_threads(2);
+  auto two = make();
+  RunGenerations(problem, *two, generations, seed);
+  omp_set_num_threads(saved);
+  EXPECT_EQ(one->population().x, two->population().x);
+  EXPECT_EQ(one->population().f, two->population().f);
+  EXPECT_EQ(one->evaluations(), two->evaluations());
+}
+
 // Runs `run` with one and with two OpenMP threads; the results must be the same bits.
 template <typename Run>
 void ExpectSameBitsWithOneAndTwoThreads(Run run) {
@@ -53,10 +105,12 @@ void ExpectSameBitsWithOneAndTwoThreads(Run run) {
 
 // Runs `first` for `total` generations straight through, and `second` (built with the same
 // parameters) from a state saved by `first`'s twin after `split` generations; both must end on
-// the same population, bit for bit.
-template <typename Make>
-void ExpectResumeMatchesUninterrupted(const Problem& problem, Make make, std::size_t split,
-                                      std::size_t total, std::uint64_t seed) {
+// the same population, bit for bit. `also(after, straight)` may compare what else the algorithm
+// keeps.
+template <typename Make, typename Also = void (*)(const Algorithm&, const Algorithm&)>
+void ExpectResumeMatchesUninterrupted(
+    const Problem& problem, Make make, std::size_t split, std::size_t total, std::uint64_t seed,
+    Also also = [](const Algorithm&, const Algorithm&) {}) {
   auto straight = make();
   Rng rng_straight(seed);
   straight->Initialize(problem, rng_straight);
@@ -79,6 +133,7 @@ void ExpectResumeMatchesUninterrupted(const Problem& problem, Make make, std::si
   EXPECT_EQ(after->population().x, straight->population().x);
   EXPECT_EQ(after->population().f, straight->population().f);
   EXPECT_EQ(after->champion_x(), straight->champion_x());
+  also(*after, *straight);
 }
 
 }  // namespace evoslam::testing
