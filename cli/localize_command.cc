@@ -81,7 +81,16 @@ LocalizeOptions OptionsFrom(const LocalizeArgs& a) try {
     e.algorithm.kind = ParseAlgorithmKind(a.island_algorithm);
   AlgorithmSpec& s = e.algorithm;
   if (use("--strategy")) s.de.strategy = ParseDeStrategy(a.strategy);
-  if (use("--pop")) s.de.population = s.jde.population = s.pso.particles = s.ga.population = a.pop;
+  if (use("--pop")) {
+    s.de.population = s.jde.population = s.pso.particles = s.ga.population = a.pop;
+    // The multi-objective EAs keep their papers' proportions: lambda = 7 mu (002), and four
+    // recombinations to one mutation.
+    s.mu_plus_lambda.mu = a.pop;
+    s.mu_plus_lambda.lambda = 7 * a.pop;
+    s.immune.population = a.pop;
+    s.immune.recombinations = a.pop - a.pop / 5;
+    s.immune.mutations = a.pop / 5;
+  }
   if (use("--crossover")) s.ga.crossover = ParseGaCrossover(a.crossover);
   if (use("--ga-grid")) s.ga.grid_step = a.ga_grid;
   if (use("--F")) s.de.f = a.f;

@@ -10,12 +10,14 @@
 namespace evoslam {
 namespace {
 
-constexpr std::array<std::pair<AlgorithmKind, std::string_view>, 5> kNames = {{
+constexpr std::array<std::pair<AlgorithmKind, std::string_view>, 7> kNames = {{
     {AlgorithmKind::kDe, "de"},
     {AlgorithmKind::kJde, "jde"},
     {AlgorithmKind::kPso, "pso"},
     {AlgorithmKind::kSga, "sga"},
     {AlgorithmKind::kAga, "aga"},
+    {AlgorithmKind::kMuPlusLambda, "mu+lambda"},
+    {AlgorithmKind::kImmune, "immune"},
 }};
 
 }  // namespace
@@ -54,6 +56,10 @@ std::unique_ptr<Algorithm> MakeAlgorithm(const AlgorithmSpec& spec) {
       return std::make_unique<SimpleGa>(spec.ga);
     case AlgorithmKind::kAga:
       return std::make_unique<AdaptiveGa>(spec.ga);
+    case AlgorithmKind::kMuPlusLambda:
+      return std::make_unique<MuPlusLambdaEa>(spec.mu_plus_lambda);
+    case AlgorithmKind::kImmune:
+      return std::make_unique<ImmuneMoea>(spec.immune);
   }
   throw Error("unknown algorithm kind");
 }
@@ -69,6 +75,10 @@ std::size_t PopulationSize(const AlgorithmSpec& spec) {
     case AlgorithmKind::kSga:
     case AlgorithmKind::kAga:
       return spec.ga.population;
+    case AlgorithmKind::kMuPlusLambda:
+      return spec.mu_plus_lambda.mu;
+    case AlgorithmKind::kImmune:
+      return spec.immune.population;
   }
   return 0;
 }

@@ -9,12 +9,14 @@
 #include "common/optim/algorithm.h"
 #include "common/optim/differential_evolution.h"
 #include "common/optim/ga_params.h"
+#include "common/optim/immune_moea.h"
+#include "common/optim/mu_plus_lambda.h"
 #include "common/optim/particle_swarm.h"
 #include "common/optim/self_adaptive_de.h"
 
 namespace evoslam {
 
-enum class AlgorithmKind { kDe, kJde, kPso, kSga, kAga };
+enum class AlgorithmKind { kDe, kJde, kPso, kSga, kAga, kMuPlusLambda, kImmune };
 
 // Names as on the command line and in checkpoints: "de", "jde", "pso", ...
 AlgorithmKind ParseAlgorithmKind(std::string_view name);  // throws Error listing the valid names
@@ -30,6 +32,8 @@ struct AlgorithmSpec {
   JdeParams jde;
   PsoParams pso;
   GaParams ga;  // sga and aga
+  MuPlusLambdaParams mu_plus_lambda;
+  ImmuneMoeaParams immune;
 };
 
 // Builds the algorithm; throws Error when its parameters cannot work.

@@ -48,6 +48,24 @@ double BestOf(const Island& island) {
   return f.cols() > 0 ? f.row(0).minCoeff() : std::numeric_limits<double>::infinity();
 }
 
+// Lowers `best` to each objective's lowest value over the islands; true if any fell.
+bool ImproveBest(const std::vector<Island>& islands, std::vector<double>& best) {
+  bool improved = false;
+  for (const Island& island : islands) {
+    const Eigen::MatrixXd& f = island.algorithm().population().f;
+    if (best.size() != static_cast<std::size_t>(f.rows()))
+      best.assign(static_cast<std::size_t>(f.rows()), std::numeric_limits<double>::infinity());
+    for (Eigen::Index k = 0; k < f.rows() && f.cols() > 0; ++k) {
+      const double v = f.row(k).minCoeff();
+      if (v < best[static_cast<std::size_t>(k)]) {
+        best[static_cast<std::size_t>(k)] = v;
+        improved = true;
+      }
+    }
+  }
+  return improved;
+}
+
 }  // namespace
 
 void ValidateIslandModelParams(const IslandModelParams& params) {
@@ -130,10 +148,7 @@ std::optional<StopReason> Archipelago::RunEpoch(const Problem& problem) {
                 [&](std::size_t i) { islands_[i].Evolve(problem, params_.migration.interval); });
   ++epoch_;
   Migrate(epoch_);
-  double best = std::numeric_limits<double>::infinity();
-  for (const Island& island : islands_) best = std::min(best, BestOf(island));
-  if (best < progress_.best[0]) {
-    progress_.best[0] = best;
+  if (ImproveBest(islands_, progress_.best)) {
     progress_.generations_without_improvement = 0;
   } else {
     progress_.generations_without_improvement += params_.migration.interval;
@@ -143,7 +158,7 @@ std::optional<StopReason> Archipelago::RunEpoch(const Problem& problem) {
 
 std::optional<StopReason> Archipelago::CheckGlobal(double elapsed_seconds) {
   progress_.elapsed_seconds = elapsed_seconds;
-  if (stop_.target && !progress_.best.empty() && progress_.best[0] <= *stop_.target)
+  if (stop_.target && progress_.best.size() == 1 && progress_.best[0] <= *stop_.target)
     return StopReason::kTarget;
   if (stop_.stagnation_generations > 0 &&
       progress_.generations_without_improvement >= stop_.stagnation_generations)
@@ -254,9 +269,7 @@ StopReason Archipelago::RunAsynchronous(const Problem& problem,
   for (const auto& e : errors) {
     if (e) std::rethrow_exception(e);
   }
-  double best = std::numeric_limits<double>::infinity();
-  for (const Island& island : islands_) best = std::min(best, BestOf(island));
-  progress_.best = {best};
+  ImproveBest(islands_, progress_.best);
   progress_.elapsed_seconds = before + Seconds(start);
   for (const Island& island : islands_) {
     if (island.stopped() == StopReason::kTarget) return StopReason::kTarget;

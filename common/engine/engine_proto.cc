@@ -154,6 +154,37 @@ proto::AlgorithmSettings ToProto(const AlgorithmSpec& spec) {
     case AlgorithmKind::kAga:
       *out.mutable_aga() = ToProto(spec.ga);
       break;
+    case AlgorithmKind::kMuPlusLambda: {
+      const MuPlusLambdaParams& m = spec.mu_plus_lambda;
+      auto* o = out.mutable_mu_plus_lambda();
+      o->set_mu(static_cast<std::uint32_t>(m.mu));
+      o->set_lambda(static_cast<std::uint32_t>(m.lambda));
+      o->set_tournament(static_cast<std::uint32_t>(m.q));
+      o->set_pc(m.pc);
+      o->set_pm(m.pm);
+      o->set_c(m.c);
+      o->set_gene_group(static_cast<std::uint32_t>(m.gene_group));
+      o->set_column(static_cast<std::uint32_t>(m.column));
+      o->set_generation_limit(static_cast<std::uint32_t>(m.generation_limit));
+      o->set_variance_threshold(m.variance_threshold);
+      o->set_offspring_share(m.offspring_share);
+      break;
+    }
+    case AlgorithmKind::kImmune: {
+      const ImmuneMoeaParams& m = spec.immune;
+      auto* o = out.mutable_immune();
+      o->set_population(static_cast<std::uint32_t>(m.population));
+      o->set_recombinations(static_cast<std::uint32_t>(m.recombinations));
+      o->set_mutations(static_cast<std::uint32_t>(m.mutations));
+      o->set_p_recombination(m.p_recombination);
+      o->set_p_immunity(m.p_immunity);
+      o->set_p_mutation(m.p_mutation);
+      o->set_recombination(std::string(ImmuneRecombinationName(m.recombination)));
+      o->set_blend_alpha(m.blend_alpha);
+      o->set_restart_spread(m.restart_spread);
+      o->set_archive_size(static_cast<std::uint32_t>(m.archive_size));
+      break;
+    }
   }
   return out;
 }
@@ -202,6 +233,39 @@ AlgorithmSpec FromProto(const proto::AlgorithmSettings& settings) {
       spec.kind = AlgorithmKind::kAga;
       spec.ga = FromProto(settings.aga());
       break;
+    case proto::AlgorithmSettings::kMuPlusLambda: {
+      const auto& o = settings.mu_plus_lambda();
+      spec.kind = AlgorithmKind::kMuPlusLambda;
+      MuPlusLambdaParams& m = spec.mu_plus_lambda;
+      m.mu = o.mu();
+      m.lambda = o.lambda();
+      m.q = o.tournament();
+      m.pc = o.pc();
+      m.pm = o.pm();
+      m.c = o.c();
+      m.gene_group = o.gene_group();
+      m.column = o.column();
+      m.generation_limit = o.generation_limit();
+      m.variance_threshold = o.variance_threshold();
+      m.offspring_share = o.offspring_share();
+      break;
+    }
+    case proto::AlgorithmSettings::kImmune: {
+      const auto& o = settings.immune();
+      spec.kind = AlgorithmKind::kImmune;
+      ImmuneMoeaParams& m = spec.immune;
+      m.population = o.population();
+      m.recombinations = o.recombinations();
+      m.mutations = o.mutations();
+      m.p_recombination = o.p_recombination();
+      m.p_immunity = o.p_immunity();
+      m.p_mutation = o.p_mutation();
+      m.recombination = ParseImmuneRecombination(o.recombination());
+      m.blend_alpha = o.blend_alpha();
+      m.restart_spread = o.restart_spread();
+      m.archive_size = o.archive_size();
+      break;
+    }
     default:
       throw Error("engine message: no algorithm, or one this build does not know");
   }

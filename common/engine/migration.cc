@@ -5,6 +5,7 @@
 #include <limits>
 #include <numeric>
 
+#include "common/optim/pareto.h"
 #include "common/util/error.h"
 
 namespace evoslam {
@@ -53,6 +54,7 @@ void ValidateMigrationParams(const MigrationParams& params, std::size_t populati
 }
 
 std::vector<std::size_t> QualityOrder(const Eigen::MatrixXd& f) {
+  if (f.rows() > 1) return RankPareto(f).Order();
   std::vector<std::size_t> order(static_cast<std::size_t>(f.cols()));
   std::iota(order.begin(), order.end(), std::size_t{0});
   const auto value = [&](std::size_t i) {

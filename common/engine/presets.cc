@@ -58,6 +58,25 @@ std::vector<Preset> MakePresets() {
     presets.push_back(p);
   }
   {
+    Preset p{"mu+lambda-002",
+             "002 section 4, global search: mu 10, lambda 7 mu, q 5, Pm 0.05, Pc 0.8, 100 "
+             "generations; columns of three (error, mean) pairs",
+             {},
+             Generations(100)};
+    p.algorithm.kind = AlgorithmKind::kMuPlusLambda;
+    presets.push_back(p);
+  }
+  {
+    Preset p{"immune-004",
+             "004 section 4: population 50, p_I 0.3, p_C 0.9, p_M 0.08; 300 generations (Table 1) "
+             "or 20 generations without improvement (Table 2), whichever comes first",
+             {},
+             Generations(300)};
+    p.algorithm.kind = AlgorithmKind::kImmune;
+    p.stop.stagnation_generations = 20;
+    presets.push_back(p);
+  }
+  {
     Preset p{"jde-brest2006",
              "Brest et al. 2006 (cited by 000): jDE/rand/1/bin, tau 0.1, F in [0.1, 1.0), "
              "population 100",

@@ -157,7 +157,13 @@ TEST_P(LocalizeThreadsTest, SameBitsWithOneAndTwoThreads) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Optimizers, LocalizeThreadsTest,
-                         ::testing::Values("de", "jde", "pso", "sga", "aga", "island"));
+                         ::testing::Values("de", "jde", "pso", "sga", "aga", "mu+lambda", "immune",
+                                           "island"),
+                         [](const auto& info) {
+                           std::string name = info.param;
+                           std::erase(name, '+');
+                           return name;
+                         });
 
 TEST(LocalizeTest, OdometryCentringUsesTheOdometryIncrement) {
   // With the window centred on the prediction the walk is followed too, and a window too small

@@ -10,6 +10,16 @@
 #include "common/util/error.h"
 
 namespace evoslam {
+
+ImmuneRecombination ParseImmuneRecombination(std::string_view name) {
+  if (name == "blend") return ImmuneRecombination::kBlend;
+  if (name == "uniform") return ImmuneRecombination::kUniform;
+  throw Error("unknown recombination '" + std::string(name) + "' (expected blend or uniform)");
+}
+
+std::string_view ImmuneRecombinationName(ImmuneRecombination recombination) {
+  return recombination == ImmuneRecombination::kBlend ? "blend" : "uniform";
+}
 namespace {
 
 Population Join(const Population& a, const Population& b) {

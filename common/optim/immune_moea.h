@@ -17,6 +17,8 @@ enum class ImmuneRecombination {
   // Each gene from one parent or the other with probability 1/2.
   kUniform,
 };
+ImmuneRecombination ParseImmuneRecombination(std::string_view name);  // "blend" | "uniform"
+std::string_view ImmuneRecombinationName(ImmuneRecombination recombination);
 
 // Defaults: population, p_R, p_I and p_M are 004's (section 4: 50, 0.9, 0.3, 0.08); the rest
 // are evoslam's choices where 004 is silent (see docs/multi_objective.md).
