@@ -2,6 +2,7 @@
 
 #include <google/protobuf/stubs/logging.h>
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <string>
 
@@ -63,6 +64,30 @@ TEST_P(EveryAlgorithmTest, IslandResumesFromBytesBitForBit) {
   EXPECT_EQ(resumed.algorithm().population().f, straight.algorithm().population().f);
   EXPECT_EQ(resumed.algorithm().evaluations(), straight.algorithm().evaluations());
   EXPECT_EQ(resumed.algorithm().champion_x(), straight.algorithm().champion_x());
+}
+
+TEST_P(EveryAlgorithmTest, SameBitsWithOneAndTwoThreads) {
+  const FunctionProblem problem(Eigen::VectorXd::Constant(6, -3.0),
+                                Eigen::VectorXd::Constant(6, 3.0),
+                                [](const Eigen::Ref<const Eigen::VectorXd>& x) {
+                                  return TestFunctionProblem::Value(TestFunction::kRastrigin, x);
+                                });
+  const auto run = [&](int threads) {
+    omp_set_num_threads(threads);
+    StopCriteria stop;
+    stop.max_generations = 20;
+    Island island(GetParam(), stop, Rng(8));
+    island.Start(problem);
+    island.Evolve(problem, 100);
+    return island.Checkpoint();
+  };
+  const int saved = omp_get_max_threads();
+  const IslandCheckpoint one = run(1);
+  const IslandCheckpoint two = run(2);
+  omp_set_num_threads(saved);
+  EXPECT_EQ(one.state.population.x, two.state.population.x);
+  EXPECT_EQ(one.state.population.f, two.state.population.f);
+  EXPECT_EQ(one.state.evaluations, two.state.evaluations);
 }
 
 INSTANTIATE_TEST_SUITE_P(All, EveryAlgorithmTest, ::testing::ValuesIn(AllKinds()),

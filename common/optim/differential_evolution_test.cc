@@ -11,7 +11,6 @@ namespace evoslam {
 namespace {
 
 using testing::ExpectResumeMatchesUninterrupted;
-using testing::ExpectSameBitsWithOneAndTwoThreads;
 using testing::Rosenbrock2;
 using testing::RunFor;
 using testing::ShiftedSphere;
@@ -95,14 +94,6 @@ TEST(DifferentialEvolutionTest, RefusesMultiObjectiveProblems) {
 TEST(DifferentialEvolutionTest, StrategyNamesRoundTrip) {
   for (const auto& name : DeStrategyNames()) EXPECT_EQ(DeStrategyName(ParseDeStrategy(name)), name);
   EXPECT_EQ(DeStrategyNames().size(), 10u);
-}
-
-TEST(DifferentialEvolutionTest, ResultIndependentOfThreadCount) {
-  const auto problem = Rosenbrock2();
-  ExpectSameBitsWithOneAndTwoThreads([&] {
-    DifferentialEvolution de(DeParams{});
-    return RunFor(problem, de, 25, 77);
-  });
 }
 
 TEST(DifferentialEvolutionTest, ResumedRunMatchesUninterrupted) {

@@ -390,14 +390,7 @@ TEST(ImmuneMoeaTest, RestoreRefusesAMissingOrMisshapenArchive) {
 
 TEST(ImmuneMoeaTest, RejectsBadParameters) {
   const auto rejects = [](auto change, const std::string& words) {
-    ImmuneMoeaParams params;
-    change(params);
-    try {
-      ImmuneMoea moea(params);
-      ADD_FAILURE() << "accepted parameters that should fail with: " << words;
-    } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
-    }
+    testing::ExpectRejected<ImmuneMoea, ImmuneMoeaParams>(change, words);
   };
   rejects([](ImmuneMoeaParams& p) { p.population = 1; }, "population");
   rejects(

@@ -444,14 +444,7 @@ TEST(MuPlusLambdaTest, ResumedRunMatchesUninterrupted) {
 
 TEST(MuPlusLambdaTest, RejectsBadParameters) {
   const auto rejects = [](auto change, const std::string& words) {
-    MuPlusLambdaParams params;
-    change(params);
-    try {
-      MuPlusLambdaEa ea(params);
-      ADD_FAILURE() << "accepted parameters that should fail with: " << words;
-    } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
-    }
+    testing::ExpectRejected<MuPlusLambdaEa, MuPlusLambdaParams>(change, words);
   };
   rejects([](MuPlusLambdaParams& p) { p.mu = 1; }, "mu");
   rejects([](MuPlusLambdaParams& p) { p.lambda = 0; }, "lambda");

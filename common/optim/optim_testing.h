@@ -8,11 +8,13 @@
 
 #include <cmath>
 #include <mutex>
+#include <string>
 #include <vector>
 
 #include "common/optim/algorithm.h"
 #include "common/optim/evolve.h"
 #include "common/optim/test_problems.h"
+#include "common/util/error.h"
 
 namespace evoslam::testing {
 
@@ -134,6 +136,20 @@ void ExpectResumeMatchesUninterrupted(
   EXPECT_EQ(after->population().f, straight->population().f);
   EXPECT_EQ(after->champion_x(), straight->champion_x());
   also(*after, *straight);
+}
+
+// Builds Algo from default Params changed by `change`; the constructor must refuse them with an
+// Error whose message contains `words`.
+template <typename Algo, typename Params, typename Change>
+void ExpectRejected(Change change, const std::string& words) {
+  Params params;
+  change(params);
+  try {
+    Algo algorithm(params);
+    ADD_FAILURE() << "accepted parameters that should fail with: " << words;
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace evoslam::testing

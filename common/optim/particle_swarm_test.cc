@@ -11,7 +11,6 @@ namespace evoslam {
 namespace {
 
 using testing::ExpectResumeMatchesUninterrupted;
-using testing::ExpectSameBitsWithOneAndTwoThreads;
 using testing::Rosenbrock2;
 using testing::RunFor;
 using testing::ShiftedSphere;
@@ -67,14 +66,6 @@ TEST(ParticleSwarmTest, RingKeepsMoreDiversityThanGlobalBest) {
     return total;
   };
   EXPECT_GT(spread(PsoNeighbourhood::kRing), 1.5 * spread(PsoNeighbourhood::kGlobal));
-}
-
-TEST(ParticleSwarmTest, ResultIndependentOfThreadCount) {
-  const auto problem = Rosenbrock2();
-  ExpectSameBitsWithOneAndTwoThreads([&] {
-    ParticleSwarm pso(PsoParams{});
-    return RunFor(problem, pso, 25, 5);
-  });
 }
 
 TEST(ParticleSwarmTest, RejectsBadParameters) {

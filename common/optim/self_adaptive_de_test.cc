@@ -11,7 +11,6 @@ namespace evoslam {
 namespace {
 
 using testing::ExpectResumeMatchesUninterrupted;
-using testing::ExpectSameBitsWithOneAndTwoThreads;
 using testing::Rosenbrock2;
 using testing::RunFor;
 using testing::ShiftedSphere;
@@ -65,14 +64,6 @@ TEST(SelfAdaptiveDeTest, ControlParametersAdaptWithinTheirRanges) {
   // Something was learnt: not every individual still has the initial values.
   EXPECT_TRUE((control.row(0).array() != 0.5).any());
   EXPECT_TRUE((control.row(1).array() != 0.9).any());
-}
-
-TEST(SelfAdaptiveDeTest, ResultIndependentOfThreadCount) {
-  const auto problem = Rosenbrock2();
-  ExpectSameBitsWithOneAndTwoThreads([&] {
-    SelfAdaptiveDe jde(JdeParams{});
-    return RunFor(problem, jde, 30, 6);
-  });
 }
 
 TEST(SelfAdaptiveDeTest, ResumedRunMatchesUninterrupted) {
