@@ -5,40 +5,21 @@
 
 #include <numbers>
 
+#include "bench/corridor_scene.h"
 #include "common/io/carmen_reader.h"
 #include "common/localization/localizer.h"
 #include "common/localization/scan_match_problem.h"
 #include "common/localization/segment_renderer.h"
-#include "common/sim/simulator.h"
-#include "common/sim/world.h"
 
 namespace evoslam {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180;
 
-struct Scene {
-  World world;
-  Dataset log;
-};
-
-// The s-shaped corridor with 20 cm uniform noise, as in the accuracy test.
-const Scene& Corridor() {
-  static const Scene scene = [] {
-    Scene s{BuiltinWorld("s-corridor"), {}};
-    SimulationOptions options;
-    options.noise.uniform_bandwidth = 0.2;
-    options.seed = 1;
-    s.log = Simulate(s.world, options);
-    return s;
-  }();
-  return scene;
-}
-
 // F3 candidates per second: batches of 25 positions in a 60 cm window, 361 beams, +-30 degrees.
 // Arg: threads.
 void BM_F3Candidates(benchmark::State& state) {
-  const Scene& scene = Corridor();
+  const CorridorScene& scene = Corridor();
   const LaserScan& scan = scene.log.scans[100];
   const Pose2 center = *scan.true_pose;
   const SegmentRenderer renderer(TemporaryMap(scene.world.map, center.translation(), 8.5));
@@ -66,7 +47,7 @@ BENCHMARK(BM_F3Candidates)->Arg(1)->Arg(2)->UseRealTime();
 
 // One scan localized with DE/rand/1/exp, POP 25, GEN 25 (650 evaluations). Arg: threads.
 void BM_LocalizeOneScan(benchmark::State& state) {
-  const Scene& scene = Corridor();
+  const CorridorScene& scene = Corridor();
   const LaserScan& scan = scene.log.scans[100];
   const Pose2 center = *scene.log.scans[99].true_pose;
   const MapModel map(scene.world.map);
@@ -83,7 +64,7 @@ BENCHMARK(BM_LocalizeOneScan)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kM
 
 // The speed goal: all 219 scans of the s-shaped corridor, POP 25 / GEN 25. Arg: threads.
 void BM_LocalizeCorridor(benchmark::State& state) {
-  const Scene& scene = Corridor();
+  const CorridorScene& scene = Corridor();
   const MapModel map(scene.world.map);
   omp_set_num_threads(static_cast<int>(state.range(0)));
   for (auto _ : state) benchmark::DoNotOptimize(Localize(map, scene.log, LocalizeOptions{}));
