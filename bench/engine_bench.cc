@@ -146,12 +146,38 @@ const bool kRegistered = [] {
   RegisterContest("BM_EngineF3", F3, f3, "de", EvoslamDe(DeParams{}), PagmoDe(DeParams{}));
   RegisterContest("BM_EngineF3", F3, f3, "pso", EvoslamPso(PsoParams{}), PagmoPso(PsoParams{}));
 
+  // 003's SGA: binary chromosomes (16 bits a coordinate), 20 individuals, 5 pairs and 2 elitist
+  // mutants a generation, against pagmo's real-coded SGA with the budget's population.
+  GaParams sga;
+  RegisterContest("BM_EngineRastrigin30", Rastrigin30, rastrigin, "sga", EvoslamSga(sga),
+                  PagmoSga());
+  GaParams sga_grid = sga;
+  sga_grid.grid_step = 0.01;  // the papers' 1 cm search grid
+  RegisterContest("BM_EngineF3", F3, f3, "sga", EvoslamSga(sga_grid), PagmoSga());
+
+  // Island models of DE, 4 islands on 2 threads, ring, 1 migrant every 10 generations (5 on
+  // F3's 25 generations); pagmo's thread islands each run on a thread of their own.
+  const Budget rastrigin_islands{100, 500};
+  RegisterContest("BM_EngineRastrigin30", Rastrigin30, rastrigin_islands, "islands-de",
+                  EvoslamIslands(rastrigin_de, IslandBudget{}), PagmoIslands(rastrigin_de, {}));
+  RegisterEngine("BM_EngineRastrigin30/islands-de-async/evoslam", Rastrigin30, rastrigin_islands,
+                 EvoslamIslands(rastrigin_de, IslandBudget{.asynchronous = true}));
+  const Budget f3_islands{100, 25};
+  const IslandBudget f3_ring{.interval = 5};
+  RegisterContest("BM_EngineF3", F3, f3_islands, "islands-de", EvoslamIslands(DeParams{}, f3_ring),
+                  PagmoIslands(DeParams{}, f3_ring));
+
   // What each engine costs per evaluation beyond the fitness itself.
   const Budget overhead{50, 1000};
   RegisterContest("BM_EngineOverhead", Sphere30, overhead, "de", EvoslamDe(DeParams{}),
                   PagmoDe(DeParams{}));
   RegisterContest("BM_EngineOverhead", Sphere30, overhead, "pso", EvoslamPso(PsoParams{}),
                   PagmoPso(PsoParams{}));
+  RegisterContest("BM_EngineOverhead", Sphere30, overhead, "sga", EvoslamSga(sga), PagmoSga());
+  RegisterContest("BM_EngineOverhead", Sphere30, Budget{100, 500}, "islands-de",
+                  EvoslamIslands(DeParams{}, IslandBudget{}), PagmoIslands(DeParams{}, {}));
+  RegisterEngine("BM_EngineOverhead/islands-de-async/evoslam", Sphere30, Budget{100, 500},
+                 EvoslamIslands(DeParams{}, IslandBudget{.asynchronous = true}));
   return true;
 }();
 

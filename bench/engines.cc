@@ -2,13 +2,23 @@
 
 #include <pagmo/algorithms/de.hpp>
 #include <pagmo/algorithms/pso.hpp>
+#include <pagmo/algorithms/sga.hpp>
+#include <pagmo/archipelago.hpp>
+#include <pagmo/islands/thread_island.hpp>
 #include <pagmo/population.hpp>
 #include <pagmo/problem.hpp>
+#include <pagmo/r_policies/fair_replace.hpp>
+#include <pagmo/s_policies/select_best.hpp>
+#include <pagmo/topologies/ring.hpp>
+
+#include <algorithm>
+#include <limits>
 #include <string>
 #include <utility>
 
 #include "bench/pagmo_problem.h"
 #include "common/optim/evolve.h"
+#include "common/optim/simple_ga.h"
 #include "common/util/error.h"
 #include "common/util/random.h"
 
@@ -55,7 +65,7 @@ Engine Evoslam(std::function<std::unique_ptr<Algorithm>(std::size_t population)>
       [make = std::move(make)](const Problem& problem, const Budget& budget, std::uint64_t seed) {
         const std::unique_ptr<Algorithm> algorithm = make(budget.population);
         StopCriteria stop;
-        stop.max_generations = budget.generations;
+        stop.max_evaluations = budget.population * (budget.generations + 1);
         Rng rng(seed);
         const OptimResult result = Minimize(problem, *algorithm, stop, rng);
         return EngineRun{result.best_fitness, result.evaluations};
@@ -107,6 +117,66 @@ Engine PagmoPso(const PsoParams& params) {
                                        kPagmoPsoGlobalBest, /*neighb_param, unused by gbest=*/4u,
                                        /*memory=*/false, seed));
   });
+}
+
+Engine EvoslamSga(GaParams params) {
+  return Evoslam([params](std::size_t) { return std::make_unique<SimpleGa>(params); });
+}
+
+Engine PagmoSga() {
+  return Pagmo([](unsigned generations, unsigned seed) {
+    return pagmo::algorithm(pagmo::sga(generations, 0.9, 1.0, 0.02, 1.0, 2u, "exponential",
+                                       "polynomial", "tournament", seed));
+  });
+}
+
+Engine EvoslamIslands(const DeParams& params, const IslandBudget& islands) {
+  return [params, islands](const Problem& problem, const Budget& budget, std::uint64_t seed) {
+    IslandModelParams model;
+    model.islands = islands.islands;
+    model.algorithm.kind = AlgorithmKind::kDe;
+    model.algorithm.de = params;
+    model.algorithm.de.population = budget.population / islands.islands;
+    model.migration.interval = islands.interval;
+    model.migration.migrants = islands.migrants;
+    model.threads = islands.threads;
+    model.asynchronous = islands.asynchronous;
+    StopCriteria stop;
+    stop.max_generations = budget.generations;
+    Archipelago archipelago(model, stop, seed);
+    archipelago.Run(problem);
+    const OptimResult best = archipelago.Best();
+    return EngineRun{best.best_fitness, best.evaluations};
+  };
+}
+
+Engine PagmoIslands(const DeParams& params, const IslandBudget& islands) {
+  const unsigned variant = PagmoDeVariant(params.strategy);
+  return
+      [params, islands, variant](const Problem& problem, const Budget& budget, std::uint64_t seed) {
+        const auto per_island = budget.population / islands.islands;
+        const auto epochs = static_cast<unsigned>(budget.generations / islands.interval);
+        pagmo::archipelago archipelago{pagmo::ring{}};
+        for (std::size_t i = 0; i < islands.islands; ++i) {
+          const auto island_seed = static_cast<unsigned>(MixBits(seed + 1000 * (i + 1)));
+          pagmo::algorithm algorithm(pagmo::de(static_cast<unsigned>(islands.interval), params.f,
+                                               params.cr, variant, 0.0, 0.0, island_seed));
+          archipelago.push_back(pagmo::thread_island{}, std::move(algorithm),
+                                pagmo::problem(PagmoProblem(problem)), per_island,
+                                pagmo::r_policy(pagmo::fair_replace(islands.migrants)),
+                                pagmo::s_policy(pagmo::select_best(islands.migrants)), island_seed);
+        }
+        archipelago.evolve(epochs);
+        archipelago.wait_check();
+        double best = std::numeric_limits<double>::infinity();
+        std::size_t evaluations = 0;
+        for (const auto& island : archipelago) {
+          const pagmo::population population = island.get_population();
+          best = std::min(best, population.champion_f()[0]);
+          evaluations += static_cast<std::size_t>(population.get_problem().get_fevals());
+        }
+        return EngineRun{best, evaluations};
+      };
 }
 
 }  // namespace evoslam

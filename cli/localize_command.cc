@@ -305,7 +305,7 @@ void AddLocalizeCommand(CLI::App& app) {
   cmd->add_option("--migrants", a->migrants, "--optimizer island: migrants per island")
       ->check(CLI::Range(0, 100000));
   cmd->add_option("--topology", a->topology, "--optimizer island: who sends migrants to whom")
-      ->check(CLI::IsMember({"ring", "fully-connected", "star", "random"}));
+      ->check(CLI::IsMember({"ring", "bidirectional-ring", "fully-connected", "star", "random"}));
   cmd->add_option("--migration-policy", a->migration_policy,
                   "--optimizer island: which individuals leave and which they replace")
       ->check(CLI::IsMember({"best-replace-worst", "random-replace"}));

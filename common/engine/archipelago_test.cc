@@ -55,8 +55,9 @@ TEST_P(TopologyTest, SameBitsWithOneOrTwoThreads) {
 }
 
 INSTANTIATE_TEST_SUITE_P(All, TopologyTest,
-                         ::testing::Values(Topology::kRing, Topology::kFullyConnected,
-                                           Topology::kStar, Topology::kRandom));
+                         ::testing::Values(Topology::kRing, Topology::kBidirectionalRing,
+                                           Topology::kFullyConnected, Topology::kStar,
+                                           Topology::kRandom));
 
 TEST(ArchipelagoTest, ResumesFromASerialisedCheckpointBitForBit) {
   const TestFunctionProblem problem(TestFunction::kRastrigin, 8);

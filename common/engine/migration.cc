@@ -12,17 +12,20 @@ namespace evoslam {
 
 Topology ParseTopology(std::string_view name) {
   if (name == "ring") return Topology::kRing;
+  if (name == "bidirectional-ring") return Topology::kBidirectionalRing;
   if (name == "fully-connected") return Topology::kFullyConnected;
   if (name == "star") return Topology::kStar;
   if (name == "random") return Topology::kRandom;
   throw Error("unknown topology '" + std::string(name) +
-              "' (expected ring, fully-connected, star or random)");
+              "' (expected ring, bidirectional-ring, fully-connected, star or random)");
 }
 
 std::string_view TopologyName(Topology topology) {
   switch (topology) {
     case Topology::kRing:
       return "ring";
+    case Topology::kBidirectionalRing:
+      return "bidirectional-ring";
     case Topology::kFullyConnected:
       return "fully-connected";
     case Topology::kStar:
@@ -74,6 +77,11 @@ std::vector<std::vector<std::size_t>> MigrationSources(Topology topology, std::s
     switch (topology) {
       case Topology::kRing:
         sources[i] = {(i + islands - 1) % islands};
+        break;
+      case Topology::kBidirectionalRing:
+        sources[i] = {(i + islands - 1) % islands};
+        // With two islands both neighbours are the same island, which sends once.
+        if (islands > 2) sources[i].push_back((i + 1) % islands);
         break;
       case Topology::kFullyConnected:
         for (std::size_t j = 0; j < islands; ++j) {

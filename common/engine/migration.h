@@ -11,10 +11,12 @@
 
 namespace evoslam {
 
-// Who sends migrants to whom. Star: island 0 is the hub, exchanging with every other island.
+// Who sends migrants to whom. Ring: island i receives from i - 1; bidirectional ring: from both
+// neighbours (pagmo's ring). Star: island 0 is the hub, exchanging with every other island.
 // Random: every epoch each island receives from one other island drawn at random.
-enum class Topology { kRing, kFullyConnected, kStar, kRandom };
-Topology ParseTopology(std::string_view name);  // ring | fully-connected | star | random
+enum class Topology { kRing, kBidirectionalRing, kFullyConnected, kStar, kRandom };
+// ring | bidirectional-ring | fully-connected | star | random
+Topology ParseTopology(std::string_view name);
 std::string_view TopologyName(Topology topology);
 
 // best-replace-worst: an island sends its k best; the receiver's worst give way to immigrants

@@ -16,6 +16,10 @@ TEST(MigrationSourcesTest, RingFullyConnectedAndStar) {
   const auto ring = MigrationSources(Topology::kRing, 4, rng);
   EXPECT_EQ(ring[0], std::vector<std::size_t>{3});
   EXPECT_EQ(ring[2], std::vector<std::size_t>{1});
+  const auto both = MigrationSources(Topology::kBidirectionalRing, 4, rng);
+  EXPECT_EQ(both[0], (std::vector<std::size_t>{3, 1}));
+  EXPECT_EQ(both[2], (std::vector<std::size_t>{1, 3}));
+  EXPECT_EQ(MigrationSources(Topology::kBidirectionalRing, 2, rng)[1], std::vector<std::size_t>{0});
   const auto full = MigrationSources(Topology::kFullyConnected, 3, rng);
   EXPECT_EQ(full[1], (std::vector<std::size_t>{0, 2}));
   const auto star = MigrationSources(Topology::kStar, 4, rng);
@@ -39,8 +43,8 @@ TEST(MigrationSourcesTest, RandomNeverSelfAndCoversOthers) {
 }
 
 TEST(MigrationTest, NamesRoundTripAndBadNamesAreRefused) {
-  for (const Topology t :
-       {Topology::kRing, Topology::kFullyConnected, Topology::kStar, Topology::kRandom})
+  for (const Topology t : {Topology::kRing, Topology::kBidirectionalRing, Topology::kFullyConnected,
+                           Topology::kStar, Topology::kRandom})
     EXPECT_EQ(ParseTopology(TopologyName(t)), t);
   EXPECT_THROW(ParseTopology("torus"), Error);
   EXPECT_THROW(ParseMigrationPolicy("worst"), Error);

@@ -41,8 +41,8 @@ std::array<std::size_t, 5> DistinctIndices(std::size_t count, std::size_t n, std
   return out;
 }
 
-// Writes the strategy's mutant for target i into `out`; returns the index of its base vector,
-// which pulls out-of-box coordinates back inside.
+// Writes the strategy's mutant for target i into `out`; returns the index of the individual that
+// out-of-box coordinates are pulled back towards (the best for best/*, the target otherwise).
 std::size_t Mutant(DeStrategy s, const Eigen::MatrixXd& pop, std::size_t i, std::size_t best,
                    double f, Rng& rng, Eigen::VectorXd& out) {
   const std::size_t n = static_cast<std::size_t>(pop.cols());

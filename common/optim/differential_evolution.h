@@ -45,8 +45,9 @@ void ValidateDeParams(const DeParams& params);
 
 // Synchronous DE: each generation builds all trial vectors, evaluates them as one batch, then
 // keeps each trial that is no worse than its target. Trial coordinates that leave the box are
-// put halfway between the base vector and the violated bound, so the search stays in the window
-// without piling up on its edges.
+// put halfway between the violated bound and a point known to lie inside: the best individual for
+// the best/* strategies, the target otherwise. The search stays in the window without piling up
+// on its edges.
 class DifferentialEvolution : public Algorithm {
  public:
   explicit DifferentialEvolution(const DeParams& params);
