@@ -151,6 +151,11 @@ const bool kRegistered = [] {
   GaParams sga;
   RegisterContest("BM_EngineRastrigin30", Rastrigin30, rastrigin, "sga", EvoslamSga(sga),
                   PagmoSga());
+  // The same with about one flipped bit per child (480 bits), which 003 does not have.
+  GaParams sga_flip = sga;
+  sga_flip.bit_flip = 1.0 / 480;
+  RegisterEngine("BM_EngineRastrigin30/sga-bitflip/evoslam", Rastrigin30, rastrigin,
+                 EvoslamSga(sga_flip));
   GaParams sga_grid = sga;
   sga_grid.grid_step = 0.01;  // the papers' 1 cm search grid
   RegisterContest("BM_EngineF3", F3, f3, "sga", EvoslamSga(sga_grid), PagmoSga());

@@ -37,7 +37,7 @@ struct LocalizeArgs {
   PsoParams pso;
   std::string pso_neighbourhood = "global";
   std::string crossover = "two-point";
-  double ga_grid = 0.01;
+  double ga_grid = 0.01, ga_bit_flip = 0.0;
   std::size_t islands = 4, migration_interval = 5, migrants = 1;
   std::string island_algorithm = "de", topology = "ring", migration_policy = "best-replace-worst";
   std::string preset;
@@ -93,6 +93,7 @@ LocalizeOptions OptionsFrom(const LocalizeArgs& a) try {
   }
   if (use("--crossover")) s.ga.crossover = ParseGaCrossover(a.crossover);
   if (use("--ga-grid")) s.ga.grid_step = a.ga_grid;
+  if (use("--ga-bit-flip")) s.ga.bit_flip = a.ga_bit_flip;
   if (use("--F")) s.de.f = a.f;
   if (use("--CR")) s.de.cr = a.cr;
   if (use("--w")) s.pso.inertia = a.pso.inertia;
@@ -294,6 +295,9 @@ void AddLocalizeCommand(CLI::App& app) {
   cmd->add_option("--ga-grid", a->ga_grid,
                   "SGA and aGA: search grid of the binary chromosomes, m (0: none)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--ga-bit-flip", a->ga_bit_flip,
+                  "SGA and aGA: probability of flipping each bit of a child (003: 0)")
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--islands", a->islands, "--optimizer island: number of islands")
       ->check(CLI::Range(1, 4096));
   cmd->add_option("--island-algorithm", a->island_algorithm,

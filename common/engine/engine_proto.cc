@@ -73,6 +73,7 @@ proto::GaSettings ToProto(const GaParams& p) {
   out.set_mutants(static_cast<std::uint32_t>(p.mutants));
   out.set_mutation_box(p.mutation_box);
   out.set_replaced(static_cast<std::uint32_t>(p.replaced));
+  out.set_bit_flip(p.bit_flip);
   return out;
 }
 
@@ -88,6 +89,7 @@ GaParams FromProto(const proto::GaSettings& p) {
   out.mutants = p.mutants();
   out.mutation_box = p.mutation_box();
   out.replaced = p.replaced();
+  out.bit_flip = p.bit_flip();
   return out;
 }
 

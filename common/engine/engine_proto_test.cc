@@ -28,6 +28,7 @@ std::vector<AlgorithmSpec> AllKinds() {
     s.ga.population = 17;
     s.ga.crossover = GaCrossover::kUniform;
     s.ga.grid_step = 0.25;
+    s.ga.bit_flip = 0.01;
     specs.push_back(s);
   }
   return specs;

@@ -19,6 +19,8 @@ void BinaryGa::DoStep(const Problem& problem, Rng& rng) {
   offspring_.resize(chromosomes_.rows(),
                     static_cast<Eigen::Index>(CandidatesPerGeneration(params_)));
   Breed(ranking, rng, offspring_);
+  for (Eigen::Index c = 0; c < static_cast<Eigen::Index>(2 * params_.pairs); ++c)
+    FlipBits(params_.bits, params_.bit_flip, rng, offspring_.col(c));
   DecodeCandidates(problem, coding_, offspring_, candidates_);
   Evaluate(problem, candidates_, candidate_f_);
   for (const auto& [index, candidate] : ReplaceWorst(ranking, candidate_f_, params_.replaced)) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 
 namespace evoslam {
@@ -89,6 +90,21 @@ std::vector<std::pair<std::size_t, std::size_t>> ReplaceWorst(
   for (std::size_t k = 0; k < count; ++k)
     moves.emplace_back(ranking[ranking.size() - 1 - k], best_candidates[k]);
   return moves;
+}
+
+void FlipBits(int bits, double probability, Rng& rng, Eigen::Ref<Chromosome> chromosome) {
+  if (probability <= 0.0) return;
+  // Jump from one flipped bit to the next with geometrically distributed gaps: one draw per
+  // flip instead of one per bit.
+  const auto total = static_cast<double>(chromosome.size()) * bits;
+  const double log_keep = std::log1p(-std::min(probability, 1.0 - 1e-12));
+  double position = -1.0;
+  for (;;) {
+    position += 1.0 + std::floor(std::log1p(-rng.Uniform()) / log_keep);
+    if (!(position < total)) return;
+    const auto k = static_cast<std::int64_t>(position);
+    chromosome(static_cast<Eigen::Index>(k / bits)) ^= std::uint32_t{1} << (k % bits);
+  }
 }
 
 }  // namespace evoslam

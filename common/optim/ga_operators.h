@@ -27,6 +27,9 @@ void CrossChromosomes(GaCrossover kind, int bits, const Eigen::Ref<const Chromos
 void MutateNearBest(const Eigen::Ref<const Chromosome>& best, std::uint32_t max_code,
                     double box_fraction, Rng& rng, Eigen::Ref<Chromosome> mutant);
 
+// Flips each of the `bits` low bits of every code with the given probability.
+void FlipBits(int bits, double probability, Rng& rng, Eigen::Ref<Chromosome> chromosome);
+
 // Column indices of f, best first: ascending first objective, NaN last, ties in index order.
 std::vector<std::size_t> RankByFitness(const Eigen::MatrixXd& f);
 

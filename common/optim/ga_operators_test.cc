@@ -162,5 +162,24 @@ TEST(GaOperatorsTest, BestCandidatesReplaceTheWorstIndividuals) {
   EXPECT_EQ(moves[1], (std::pair<std::size_t, std::size_t>{3, 1}));
 }
 
+TEST(GaOperatorsTest, BitFlipsHitEachBitWithTheGivenProbability) {
+  // 3 codes of 10 bits, flipped 20 000 times with p = 0.1: every bit flips close to 2000 times,
+  // and never a bit above the 10th.
+  Rng rng(6);
+  std::vector<int> flips(30, 0);
+  for (int trial = 0; trial < 20000; ++trial) {
+    Chromosome c = Chromosome::Zero(3);
+    FlipBits(10, 0.1, rng, c);
+    for (Eigen::Index j = 0; j < 3; ++j) {
+      EXPECT_LT(c(j), 1u << 10);
+      for (int b = 0; b < 10; ++b) flips[static_cast<std::size_t>(j * 10 + b)] += (c(j) >> b) & 1u;
+    }
+  }
+  for (const int f : flips) EXPECT_NEAR(f, 2000, 200);
+  Chromosome untouched = Chromosome::Constant(3, 5);
+  FlipBits(10, 0.0, rng, untouched);
+  EXPECT_EQ(untouched, Chromosome::Constant(3, 5));
+}
+
 }  // namespace
 }  // namespace evoslam

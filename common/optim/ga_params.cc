@@ -33,6 +33,8 @@ void ValidateGaParams(const GaParams& params) {
     throw Error("genetic algorithm: grid step must be finite and >= 0");
   if (!(params.elite_fraction > 0.0 && params.elite_fraction <= 1.0))
     throw Error("genetic algorithm: elite fraction must be in (0, 1]");
+  if (!(params.bit_flip >= 0.0 && params.bit_flip <= 1.0))
+    throw Error("genetic algorithm: bit flip is a probability, in [0, 1]");
   if (!(params.mutation_box > 0.0 && params.mutation_box <= 1.0))
     throw Error("genetic algorithm: mutation box must be in (0, 1]");
   if (MatingPoolSize(params) < 2) {

@@ -35,6 +35,10 @@ struct GaParams {
   double mutation_box = 0.05;
   // How many of the worst individuals the best new candidates replace each generation.
   std::size_t replaced = 8;
+  // Probability of flipping each bit of a crossover child. 003 has no such mutation (0); on
+  // problems of many coordinates, where crossover alone soon runs out of new bits, about one flip
+  // per child (1 / (bits * dimension)) helps.
+  double bit_flip = 0.0;
 };
 
 // Throws Error naming the parameter that cannot work.

@@ -220,5 +220,21 @@ TEST(SimpleGaTest, RefusesMultiObjectiveProblems) {
   EXPECT_THROW(ga.Initialize(ZdtProblem(1, 5), rng), Error);
 }
 
+TEST(SimpleGaTest, BitFlipsHelpOnManyCoordinates) {
+  // With 003's operators alone, crossover of 20 individuals soon has no new bits to offer in 10
+  // dimensions; about one flipped bit per child keeps the search moving.
+  const TestFunctionProblem problem(TestFunction::kRastrigin, 10);
+  double plain = 0.0, flipped = 0.0;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    GaParams params;
+    SimpleGa without(params);
+    plain += RunFor(problem, without, 2000, seed).best_fitness;
+    params.bit_flip = 1.0 / 160;
+    SimpleGa with(params);
+    flipped += RunFor(problem, with, 2000, seed).best_fitness;
+  }
+  EXPECT_LT(flipped, 0.5 * plain);
+}
+
 }  // namespace
 }  // namespace evoslam
