@@ -42,6 +42,8 @@ struct ArchipelagoCheckpoint {
   StopProgress progress;
 };
 
+// Progress after an epoch. In asynchronous mode islands finish their epochs independently, and
+// `epoch` counts island-epochs.
 struct EpochReport {
   std::size_t epoch = 0;
   std::size_t evaluations = 0;

@@ -271,6 +271,18 @@ AlgorithmSpec FromProto(const proto::AlgorithmSettings& settings) {
     default:
       throw Error("engine message: no algorithm, or one this build does not know");
   }
+  // A hostile message could ask for billions of individuals; nothing evoslam runs needs more
+  // than a million a batch.
+  constexpr std::size_t kMaxIndividuals = 1u << 20;
+  const std::size_t batch =
+      std::max({PopulationSize(spec), spec.mu_plus_lambda.lambda,
+                spec.immune.recombinations + spec.immune.mutations, spec.immune.archive_size});
+  if (PopulationSize(spec) > kMaxIndividuals ||
+      (spec.kind == AlgorithmKind::kMuPlusLambda && batch > kMaxIndividuals) ||
+      (spec.kind == AlgorithmKind::kImmune && batch > kMaxIndividuals)) {
+    throw Error("engine message: more than " + std::to_string(kMaxIndividuals) +
+                " individuals asked for");
+  }
   MakeAlgorithm(spec);  // validates the parameters
   return spec;
 }

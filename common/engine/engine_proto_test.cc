@@ -132,6 +132,10 @@ TEST(EngineProtoTest, RefusesInconsistentShapes) {
   short_population.mutable_algorithm()->mutable_de()->set_population(24);
   EXPECT_THROW(FromProto(short_population), Error);
 
+  proto::IslandCheckpoint crowd = ValidCheckpoint();
+  crowd.mutable_algorithm()->mutable_de()->set_population(4000000000u);
+  EXPECT_THROW(FromProto(crowd), Error);
+
   proto::IslandCheckpoint no_rng = ValidCheckpoint();
   no_rng.mutable_rng()->clear_words();
   EXPECT_THROW(FromProto(no_rng), Error);
