@@ -37,6 +37,21 @@ TEST_P(PsoNeighbourhoodTest, SolvesRosenbrock) {
   EXPECT_NEAR(r.best(1), 1.0, 2e-2);
 }
 
+TEST_P(PsoNeighbourhoodTest, FindsLowBasinsOfRastrigin) {
+  // Random sampling of the same 20 040 points ends near 60 in 10-D; both neighbourhoods end a
+  // few basins from the optimum (mean of five seeds about 6 when measured).
+  const TestFunctionProblem problem(TestFunction::kRastrigin, 10);
+  double total = 0.0;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    PsoParams params;
+    params.particles = 40;
+    params.neighbourhood = GetParam();
+    ParticleSwarm pso(params);
+    total += RunFor(problem, pso, 500, seed).best_fitness;
+  }
+  EXPECT_LT(total / 5, 10.0);
+}
+
 TEST_P(PsoNeighbourhoodTest, ResumedRunMatchesUninterrupted) {
   PsoParams params;
   params.neighbourhood = GetParam();
