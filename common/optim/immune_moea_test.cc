@@ -182,7 +182,7 @@ class MarkedZdt : public ZdtProblem {
 // single-objective optimiser like the others.
 TEST(ImmuneMoeaTest, SolvesSingleObjectiveSphereRosenbrockAndRastrigin) {
   double sphere = 0.0, rosenbrock = 0.0, rastrigin = 0.0;
-  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     ImmuneMoea a(ImmuneMoeaParams{}), b(ImmuneMoeaParams{}), c(ImmuneMoeaParams{});
     sphere = std::max(
         sphere,
@@ -193,11 +193,11 @@ TEST(ImmuneMoeaTest, SolvesSingleObjectiveSphereRosenbrockAndRastrigin) {
     rastrigin += testing::RunFor(TestFunctionProblem(TestFunction::kRastrigin, 10), c, 400, seed)
                      .best_fitness;
   }
-  // Measured: worst sphere 5e-4, worst Rosenbrock 3e-6, mean Rastrigin 2.7; random sampling of
+  // Measured: worst sphere 3e-4, worst Rosenbrock 3e-6, mean Rastrigin 2.4; random sampling of
   // the same 20 000 points ends near 10, 0.04 and 60.
   EXPECT_LT(sphere, 2e-3);
   EXPECT_LT(rosenbrock, 1e-4);
-  EXPECT_LT(rastrigin / 5, 5.0);
+  EXPECT_LT(rastrigin / 3, 5.0);
 }
 
 TEST(ImmuneMoeaTest, ImmuneSelectionDecidesWhetherTheVaccinatedChildIsKept) {
