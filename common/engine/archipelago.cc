@@ -132,9 +132,7 @@ void Archipelago::Start(const Problem& problem) {
   ForEachIsland(islands_.size(), Threads(), [&](std::size_t i) { islands_[i].Start(problem); });
   epoch_ = 0;
   progress_ = StopProgress{};
-  progress_.best = {std::numeric_limits<double>::infinity()};
-  for (const Island& island : islands_)
-    progress_.best[0] = std::min(progress_.best[0], BestOf(island));
+  ImproveBest(islands_, progress_.best);
   progress_.elapsed_seconds = Seconds(start);
   started_ = true;
 }
