@@ -220,7 +220,7 @@ StopReason Archipelago::RunAsynchronous(const Problem& problem,
     for (std::size_t i = 0; i < n; ++i) {
       threads.emplace_back([&, i] {
         try {
-          // Every island has a core of its own; evaluation threads would only compete with them.
+          // The islands are the parallelism here; evaluation threads would only compete with them.
           omp_set_num_threads(1);
           Rng rng = Rng(seed_).Stream(kAsyncMigrationStream).Stream(i);
           Island& island = islands_[i];
