@@ -14,7 +14,6 @@ namespace {
 
 using testing::BestFitnesses;
 using testing::ExpectResumeMatchesUninterrupted;
-using testing::ExpectSameBitsWithOneAndTwoThreads;
 using testing::Mean;
 using testing::MeanSpread;
 using testing::Rosenbrock2;
@@ -139,14 +138,6 @@ TEST(AdaptiveGaTest, ImmigrantsReplaceOnlyTheExpressedChromosome) {
   EXPECT_EQ(aga.dormant().col(5), dormant);
   const BinaryCoding coding(problem.lower(), problem.upper(), 16, 0.01);
   EXPECT_EQ(aga.chromosomes().col(5), coding.Encode(x));
-}
-
-TEST(AdaptiveGaTest, ResultIndependentOfThreadCount) {
-  const auto problem = Rosenbrock2();
-  ExpectSameBitsWithOneAndTwoThreads([&] {
-    AdaptiveGa aga(GaParams{});
-    return RunFor(problem, aga, 15, 13);
-  });
 }
 
 TEST(AdaptiveGaTest, ResumedRunMatchesUninterrupted) {

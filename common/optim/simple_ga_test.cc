@@ -13,7 +13,6 @@ namespace {
 
 using testing::BestFitnesses;
 using testing::ExpectResumeMatchesUninterrupted;
-using testing::ExpectSameBitsWithOneAndTwoThreads;
 using testing::Mean;
 using testing::Rosenbrock2;
 using testing::RunFor;
@@ -141,15 +140,6 @@ TEST(SimpleGaTest, IntegerProblemsGetIntegers) {
   };
   SimpleGa ga(GaParams{});
   EXPECT_EQ(RunFor(IntegerSphere(), ga, 60, 5).best_fitness, 0.0);
-}
-
-TEST(SimpleGaTest, ResultIndependentOfThreadCount) {
-  // FunctionProblem spreads every batch over the threads.
-  const auto problem = Rosenbrock2();
-  ExpectSameBitsWithOneAndTwoThreads([&] {
-    SimpleGa ga(GaParams{});
-    return RunFor(problem, ga, 15, 13);
-  });
 }
 
 TEST(SimpleGaTest, ResumedRunMatchesUninterrupted) {
