@@ -4,7 +4,6 @@
 #include <cstddef>
 
 #include "common/optim/problem.h"
-#include "common/util/random.h"
 
 namespace evoslam {
 
@@ -17,18 +16,11 @@ struct Population {
 
   // The lowest first objective; the first such index on ties, so the choice is deterministic.
   std::size_t BestIndex() const;
-  // The highest first objective, last such index on ties (never the BestIndex of a population of
-  // two or more unless all are equal).
-  std::size_t WorstIndex() const;
 };
 
 // Evaluates the columns of x as one batch into f (resized to objectives x cols).
 void EvaluateBatch(const Problem& problem, const Eigen::Ref<const Eigen::MatrixXd>& x,
                    Eigen::MatrixXd& f);
-
-// `size` candidates drawn uniformly in the problem's box and conformed to its encoding,
-// evaluated as one batch.
-Population RandomPopulation(const Problem& problem, std::size_t size, Rng& rng);
 
 }  // namespace evoslam
 

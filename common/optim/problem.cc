@@ -8,18 +8,6 @@
 
 namespace evoslam {
 
-std::string_view EncodingName(Encoding encoding) {
-  switch (encoding) {
-    case Encoding::kReal:
-      return "real";
-    case Encoding::kInteger:
-      return "integer";
-    case Encoding::kBinary:
-      return "binary";
-  }
-  return "unknown";
-}
-
 void Conform(const Problem& problem, Eigen::Ref<Eigen::VectorXd> x) {
   const Eigen::VectorXd& lo = problem.lower();
   const Eigen::VectorXd& hi = problem.upper();

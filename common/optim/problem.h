@@ -4,7 +4,6 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <span>
-#include <string_view>
 
 namespace evoslam {
 
@@ -13,7 +12,6 @@ class Immunity;
 // What values a problem's coordinates take. Algorithms search in real numbers and hand the problem
 // only conforming candidates (see Conform): integers for kInteger, 0 or 1 for kBinary.
 enum class Encoding { kReal, kInteger, kBinary };
-std::string_view EncodingName(Encoding encoding);
 
 // A box-bounded minimisation problem with one or more objectives, evaluated a batch at a time:
 // one generation is one batch, the unit that is spread across threads and, through the service,
