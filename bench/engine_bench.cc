@@ -167,6 +167,8 @@ const bool kRegistered = [] {
                   EvoslamIslands(rastrigin_de, IslandBudget{}), PagmoIslands(rastrigin_de, {}));
   RegisterEngine("BM_EngineRastrigin30/islands-de-async/evoslam", Rastrigin30, rastrigin_islands,
                  EvoslamIslands(rastrigin_de, IslandBudget{.asynchronous = true}));
+  RegisterEngine("BM_EngineRastrigin30/islands-de-lockstep/pagmo", Rastrigin30, rastrigin_islands,
+                 PagmoIslands(rastrigin_de, IslandBudget{.lockstep = true}));
   const Budget f3_islands{100, 25};
   const IslandBudget f3_ring{.interval = 5};
   RegisterContest("BM_EngineF3", F3, f3_islands, "islands-de", EvoslamIslands(DeParams{}, f3_ring),

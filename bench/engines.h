@@ -62,7 +62,10 @@ struct IslandBudget {
   std::size_t interval = 10;
   std::size_t migrants = 1;
   std::size_t threads = 2;
-  bool asynchronous = false;  // ours only: pagmo's thread islands are always asynchronous
+  bool asynchronous = false;  // ours only
+  // pagmo only: evolve one epoch at a time and wait for all islands, so that no island runs ahead
+  // of the others (pagmo's islands otherwise drift apart).
+  bool lockstep = false;
 };
 Engine EvoslamIslands(const DeParams& params, const IslandBudget& islands);
 Engine PagmoIslands(const DeParams& params, const IslandBudget& islands);
