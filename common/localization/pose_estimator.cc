@@ -49,6 +49,14 @@ std::vector<std::string> OptimizerNames() {
   return names;
 }
 
+IslandModelParams IslandModelOf(const EstimatorParams& params) {
+  IslandModelParams island;
+  island.islands = params.islands;
+  island.algorithm = params.algorithm;
+  island.migration = params.migration;
+  return island;
+}
+
 void ValidateEstimatorParams(const EstimatorParams& params) {
   if (!(params.window > 0.0)) throw Error("search window must be positive");
   if (!(params.heading_half_window >= 0.0) || params.heading_half_window > 3.14159265358979323846) {
@@ -59,13 +67,7 @@ void ValidateEstimatorParams(const EstimatorParams& params) {
   if (params.generations == 0) throw Error("generations must be at least 1");
   if (params.optimizer == OptimizerKind::kExhaustive) return;
   MakeAlgorithm(params.algorithm);  // throws on parameters the algorithm cannot work with
-  if (params.optimizer == OptimizerKind::kIsland) {
-    IslandModelParams island;
-    island.islands = params.islands;
-    island.algorithm = params.algorithm;
-    island.migration = params.migration;
-    ValidateIslandModelParams(island);
-  }
+  if (params.optimizer == OptimizerKind::kIsland) ValidateIslandModelParams(IslandModelOf(params));
 }
 
 namespace {
@@ -80,11 +82,7 @@ OptimResult Optimize(const Problem& problem, const EstimatorParams& params,
       return Minimize(problem, *algorithm, stop, rng);
     }
     case OptimizerKind::kIsland: {
-      IslandModelParams island;
-      island.islands = params.islands;
-      island.algorithm = params.algorithm;
-      island.migration = params.migration;
-      Archipelago archipelago(island, stop, rng.NextU64());
+      Archipelago archipelago(IslandModelOf(params), stop, rng.NextU64());
       archipelago.Run(problem);
       return archipelago.Best();
     }

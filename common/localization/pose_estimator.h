@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/engine/algorithm_spec.h"
+#include "common/engine/archipelago.h"
 #include "common/engine/migration.h"
 #include "common/localization/range_renderer.h"
 #include "common/localization/scan_fitness.h"
@@ -58,6 +59,9 @@ struct PoseEstimate {
 // `max_range` is the range the simulation stops at; observed readings at or beyond it are ignored.
 PoseEstimate EstimatePose(const RangeRenderer& renderer, const LaserScan& scan, const Pose2& center,
                           const EstimatorParams& params, float max_range, Rng& rng);
+
+// The island model `--optimizer island` runs: islands of params.algorithm.
+IslandModelParams IslandModelOf(const EstimatorParams& params);
 
 // Throws Error naming the offending parameter when params cannot work.
 void ValidateEstimatorParams(const EstimatorParams& params);
