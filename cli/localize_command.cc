@@ -270,8 +270,8 @@ void AddLocalizeCommand(CLI::App& app) {
                   "--island-algorithm) or exhaustive")
       ->check(CLI::IsMember(OptimizerNames()));
   cmd->add_option("--preset", a->preset,
-                  "start from a paper's settings (see docs/engine.md); options given as well "
-                  "override them")
+                  "start from a paper's algorithm, settings and generation count (see "
+                  "docs/engine.md); options given as well override them")
       ->check(CLI::IsMember(PresetNames()));
   cmd->add_option("--strategy", a->strategy, "DE strategy, e.g. rand1exp, best1bin");
   cmd->add_option("--pop", a->pop, "population, or particles (PSO); per island with islands")
