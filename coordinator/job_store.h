@@ -1,0 +1,65 @@
+#ifndef EVOSLAM_COORDINATOR_JOB_STORE_H_
+#define EVOSLAM_COORDINATOR_JOB_STORE_H_
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "coordinator/sqlite.h"
+#include "evoslam/service.pb.h"
+
+namespace evoslam {
+
+// The coordinator's durable state in one SQLite file: uploaded datasets, jobs with their specs,
+// states and results, and each island's latest checkpoint. Every change is one committed
+// transaction, so after kill -9 and a restart on the same file nothing submitted is lost and
+// every unfinished job can resume from its last checkpoint. One coordinator owns a file.
+class JobStore {
+ public:
+  explicit JobStore(const std::filesystem::path& path);
+
+  // Datasets, by the SHA-256 of their bytes (the caller has checked it). PutDataset returns false
+  // when the dataset was already stored.
+  bool PutDataset(const std::string& sha256, const std::string& name, const std::string& content);
+  bool HasDataset(const std::string& sha256);
+  std::optional<std::string> Dataset(const std::string& sha256);
+
+  // A new job in state QUEUED; returns its id ("job-1", "job-2", ...).
+  std::string AddJob(const proto::JobSpec& spec, double now_unix_s);
+  std::optional<proto::JobSpec> Spec(const std::string& job_id);
+  std::optional<proto::JobStatus> Status(const std::string& job_id);
+  std::vector<proto::JobStatus> Jobs();
+  // Jobs that were queued or running when the coordinator last stopped, oldest first.
+  std::vector<std::string> Unfinished();
+
+  void SetRunning(const std::string& job_id, const std::string& phase, std::uint64_t done,
+                  std::uint64_t total, std::uint64_t evaluations);
+  // Ends a job; `error` is empty unless it failed.
+  void Finish(const std::string& job_id, proto::JobState state, const std::string& error,
+              double now_unix_s);
+
+  // The latest checkpoint of each island of a job, replaced at every migration epoch. `bytes` is
+  // a serialised proto::IslandCheckpoint.
+  void SaveCheckpoint(const std::string& job_id, std::uint32_t island, std::uint64_t epoch,
+                      const std::string& bytes);
+  struct Checkpoint {
+    std::uint32_t island = 0;
+    std::uint64_t epoch = 0;
+    std::string bytes;
+  };
+  std::vector<Checkpoint> Checkpoints(const std::string& job_id);
+
+  void SaveResult(const std::string& job_id, const std::vector<proto::ResultFile>& files);
+  std::vector<proto::ResultFile> Result(const std::string& job_id);
+
+ private:
+  std::int64_t JobNumber(const std::string& job_id) const;
+
+  Database db_;
+};
+
+}  // namespace evoslam
+
+#endif  // EVOSLAM_COORDINATOR_JOB_STORE_H_
