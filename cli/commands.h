@@ -11,6 +11,7 @@ void AddInfoCommand(CLI::App& app);
 void AddSimulateCommand(CLI::App& app);
 void AddLocalizeCommand(CLI::App& app);
 void AddEvalCommand(CLI::App& app);
+void AddKeygenCommand(CLI::App& app);
 
 }  // namespace evoslam::cli
 

@@ -107,6 +107,23 @@ TEST_F(CliTest, PresetsSetTheAlgorithmAndOptionsOverrideThem) {
   EXPECT_NE(b.find("\"optimizer\": \"pso\""), std::string::npos) << b;
 }
 
+TEST_F(CliTest, KeygenWritesAPairAndNeverOverwritesOneByAccident) {
+  const Result first = RunCli("keygen --name worker1 --out " + Path("keys"));
+  ASSERT_EQ(first.status, 0) << first.output;
+  const std::string public_key = ReadAll(dir_ / "keys" / "worker1.pub");
+  EXPECT_EQ(public_key.size(), 41u);  // 40 Z85 characters and a newline
+  EXPECT_NE(first.output.find(public_key.substr(0, 40)), std::string::npos) << first.output;
+  EXPECT_EQ(ReadAll(dir_ / "keys" / "worker1.key").size(), 41u);
+
+  const Result again = RunCli("keygen --name worker1 --out " + Path("keys"));
+  EXPECT_EQ(again.status, 1);
+  EXPECT_NE(again.output.find("already exists"), std::string::npos) << again.output;
+  EXPECT_EQ(ReadAll(dir_ / "keys" / "worker1.pub"), public_key);
+  ASSERT_EQ(RunCli("keygen --force --name worker1 --out " + Path("keys")).status, 0);
+  EXPECT_NE(ReadAll(dir_ / "keys" / "worker1.pub"), public_key);
+  EXPECT_EQ(RunCli("keygen --out " + Path("keys")).status, 2);  // --name is required
+}
+
 TEST_F(CliTest, MissingFileIsAClearError) {
   const Result r = RunCli("info " + Path("nope.clf"));
   EXPECT_EQ(r.status, 1);
