@@ -4,7 +4,10 @@
 # that one module can be built and tested while another is being changed.
 # -Wrestrict is off: GCC 12 reports false positives on std::string concatenation at -O3
 # (GCC bug 105651), which would fail the -Werror build on correct code.
-set(EVOSLAM_WARNINGS -Wall -Wextra -Wpedantic -Werror -Wno-restrict)
+set(EVOSLAM_WARNINGS -Wall -Wextra -Wpedantic -Werror)
+if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+  list(APPEND EVOSLAM_WARNINGS -Wno-restrict)
+endif()
 # ctest runs test binaries side by side; OpenMP threads that spin while waiting would then steal
 # the cores the other binary's threads need and slow both by an order of magnitude.
 set(EVOSLAM_TEST_ENVIRONMENT "OMP_WAIT_POLICY=PASSIVE")
