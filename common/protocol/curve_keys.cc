@@ -25,10 +25,7 @@ void CheckZ85Key(const std::string& key, const std::string& where) {
   }
 }
 
-void WriteFile(const std::filesystem::path& path, const std::string& text, mode_t mode,
-               bool overwrite) {
-  if (!overwrite && std::filesystem::exists(path))
-    throw Error(path.string() + " already exists (use --force to replace it)");
+void WriteFile(const std::filesystem::path& path, const std::string& text, mode_t mode) {
   std::ofstream out(path, std::ios::trunc);
   if (!out) throw Error("cannot write " + path.string());
   // Narrow the permissions before the secret is written, so it is never readable by others.
@@ -58,10 +55,16 @@ void WriteCurveKeyPair(const CurveKeyPair& keys, const std::filesystem::path& di
                        const std::string& name, bool overwrite) {
   if (name.empty() || name.find('/') != std::string::npos)
     throw Error("key name '" + name + "' must be a plain file name");
+  const std::filesystem::path secret = dir / (name + ".key");
+  const std::filesystem::path public_key = dir / (name + ".pub");
+  // Both are checked before either is written, so a refusal never leaves a mismatched pair.
+  for (const auto& path : {secret, public_key}) {
+    if (!overwrite && std::filesystem::exists(path))
+      throw Error(path.string() + " already exists (use --force to replace it)");
+  }
   std::filesystem::create_directories(dir);
-  WriteFile(dir / (name + ".key"), keys.secret_key, S_IRUSR | S_IWUSR, overwrite);
-  WriteFile(dir / (name + ".pub"), keys.public_key, S_IRUSR | S_IWUSR | S_IRGRP | S_IROTH,
-            overwrite);
+  WriteFile(secret, keys.secret_key, S_IRUSR | S_IWUSR);
+  WriteFile(public_key, keys.public_key, S_IRUSR | S_IWUSR | S_IRGRP | S_IROTH);
 }
 
 std::string ReadCurveKey(const std::filesystem::path& path) {

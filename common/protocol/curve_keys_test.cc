@@ -38,6 +38,11 @@ TEST(CurveKeysTest, FilesRoundTripWithTheSecretReadableByTheOwnerOnly) {
                Error);
   EXPECT_EQ(ReadCurveKey(dir.path() / "keys" / "coordinator.key"), keys.secret_key);
   EXPECT_THROW(WriteCurveKeyPair(keys, dir.path(), "../escape", false), Error);
+
+  // A stray public key alone also stops the write, and no secret is left behind.
+  std::ofstream(dir.path() / "lonely.pub") << keys.public_key << '\n';
+  EXPECT_THROW(WriteCurveKeyPair(GenerateCurveKeyPair(), dir.path(), "lonely", false), Error);
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "lonely.key"));
 }
 
 TEST(CurveKeysTest, BadKeyFilesNameTheFile) {
