@@ -1,8 +1,6 @@
 #include "common/engine/migration.h"
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
 #include <numeric>
 
 #include "common/optim/pareto.h"
@@ -57,16 +55,7 @@ void ValidateMigrationParams(const MigrationParams& params, std::size_t populati
 }
 
 std::vector<std::size_t> QualityOrder(const Eigen::MatrixXd& f) {
-  if (f.rows() > 1) return RankPareto(f).Order();
-  std::vector<std::size_t> order(static_cast<std::size_t>(f.cols()));
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  const auto value = [&](std::size_t i) {
-    const double v = f(0, static_cast<Eigen::Index>(i));
-    return std::isnan(v) ? std::numeric_limits<double>::infinity() : v;
-  };
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return value(a) < value(b); });
-  return order;
+  return f.rows() > 1 ? RankPareto(f).Order() : RankByFitness(f);
 }
 
 std::vector<std::vector<std::size_t>> MigrationSources(Topology topology, std::size_t islands,

@@ -41,8 +41,8 @@ struct Migrants {
   std::size_t size() const { return static_cast<std::size_t>(x.cols()); }
 };
 
-// Indices of the population from best to worst: by fitness for one objective, by Pareto rank
-// and crowding for several; ties by index.
+// Indices of the population from best to worst: by fitness for one objective (NaN last), by
+// Pareto rank and crowding for several; ties by index.
 std::vector<std::size_t> QualityOrder(const Eigen::MatrixXd& f);
 
 // For each island, the islands it receives from this epoch (random topology draws from rng).

@@ -63,16 +63,6 @@ void MutateNearBest(const Eigen::Ref<const Chromosome>& best, std::uint32_t max_
   }
 }
 
-std::vector<std::size_t> RankByFitness(const Eigen::MatrixXd& f) {
-  std::vector<std::size_t> order(static_cast<std::size_t>(f.cols()));
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  const auto value = [&](std::size_t i) { return f(0, static_cast<Eigen::Index>(i)); };
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
-    return !std::isnan(value(i)) && (std::isnan(value(j)) || value(i) < value(j));
-  });
-  return order;
-}
-
 std::pair<std::size_t, std::size_t> DrawMates(const std::vector<std::size_t>& ranking,
                                               std::size_t pool, Rng& rng) {
   const std::size_t first = rng.UniformIndex(pool);

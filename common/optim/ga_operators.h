@@ -8,6 +8,7 @@
 
 #include "common/optim/binary_coding.h"
 #include "common/optim/ga_params.h"
+#include "common/optim/population.h"
 #include "common/util/random.h"
 
 namespace evoslam {
@@ -29,9 +30,6 @@ void MutateNearBest(const Eigen::Ref<const Chromosome>& best, std::uint32_t max_
 
 // Flips each of the `bits` low bits of every code with the given probability.
 void FlipBits(int bits, double probability, Rng& rng, Eigen::Ref<Chromosome> chromosome);
-
-// Column indices of f, best first: ascending first objective, NaN last, ties in index order.
-std::vector<std::size_t> RankByFitness(const Eigen::MatrixXd& f);
 
 // Two distinct members of the mating pool, the first `pool` (>= 2) entries of `ranking`.
 std::pair<std::size_t, std::size_t> DrawMates(const std::vector<std::size_t>& ranking,

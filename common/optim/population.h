@@ -2,6 +2,7 @@
 #define EVOSLAM_COMMON_OPTIM_POPULATION_H_
 
 #include <cstddef>
+#include <vector>
 
 #include "common/optim/problem.h"
 
@@ -17,6 +18,9 @@ struct Population {
   // The lowest first objective; the first such index on ties, so the choice is deterministic.
   std::size_t BestIndex() const;
 };
+
+// Column indices of f, best first: ascending first objective, NaN last, ties in index order.
+std::vector<std::size_t> RankByFitness(const Eigen::MatrixXd& f);
 
 // Evaluates the columns of x as one batch into f (resized to objectives x cols).
 void EvaluateBatch(const Problem& problem, const Eigen::Ref<const Eigen::MatrixXd>& x,
