@@ -48,21 +48,11 @@ double BestOf(const Island& island) {
   return f.cols() > 0 ? f.row(0).minCoeff() : std::numeric_limits<double>::infinity();
 }
 
-// Lowers `best` to each objective's lowest value over the islands; true if any fell.
+// LowerBest over every island's population.
 bool ImproveBest(const std::vector<Island>& islands, std::vector<double>& best) {
   bool improved = false;
-  for (const Island& island : islands) {
-    const Eigen::MatrixXd& f = island.algorithm().population().f;
-    if (best.size() != static_cast<std::size_t>(f.rows()))
-      best.assign(static_cast<std::size_t>(f.rows()), std::numeric_limits<double>::infinity());
-    for (Eigen::Index k = 0; k < f.rows() && f.cols() > 0; ++k) {
-      const double v = f.row(k).minCoeff();
-      if (v < best[static_cast<std::size_t>(k)]) {
-        best[static_cast<std::size_t>(k)] = v;
-        improved = true;
-      }
-    }
-  }
+  for (const Island& island : islands)
+    improved |= LowerBest(island.algorithm().population().f, best);
   return improved;
 }
 

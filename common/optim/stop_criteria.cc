@@ -41,22 +41,25 @@ void ValidateStopCriteria(const StopCriteria& c) {
 StopTracker::StopTracker(const StopCriteria& criteria, StopProgress progress)
     : criteria_(criteria), progress_(std::move(progress)) {}
 
-void StopTracker::Update(const Algorithm& algorithm, double elapsed_seconds) {
-  progress_.elapsed_seconds = elapsed_seconds;
-  const Eigen::MatrixXd& f = algorithm.population().f;
-  const auto m = static_cast<std::size_t>(f.rows());
+bool LowerBest(const Eigen::MatrixXd& f, std::vector<double>& best) {
   bool improved = false;
-  if (progress_.best.size() != m) {
-    progress_.best.assign(m, std::numeric_limits<double>::infinity());
+  if (best.size() != static_cast<std::size_t>(f.rows())) {
+    best.assign(static_cast<std::size_t>(f.rows()), std::numeric_limits<double>::infinity());
     improved = true;
   }
-  for (Eigen::Index k = 0; k < f.rows(); ++k) {
-    const double best = f.row(k).minCoeff();
-    if (best < progress_.best[static_cast<std::size_t>(k)]) {
-      progress_.best[static_cast<std::size_t>(k)] = best;
+  for (Eigen::Index k = 0; k < f.rows() && f.cols() > 0; ++k) {
+    const double v = f.row(k).minCoeff();
+    if (v < best[static_cast<std::size_t>(k)]) {
+      best[static_cast<std::size_t>(k)] = v;
       improved = true;
     }
   }
+  return improved;
+}
+
+void StopTracker::Update(const Algorithm& algorithm, double elapsed_seconds) {
+  progress_.elapsed_seconds = elapsed_seconds;
+  const bool improved = LowerBest(algorithm.population().f, progress_.best);
   // The first update only sets the baseline, so it neither counts nor resets a stagnation run.
   if (algorithm.generation() == 0) return;
   progress_.generations_without_improvement =

@@ -37,6 +37,11 @@ struct StopProgress {
   double elapsed_seconds = 0.0;  // wall time spent before the last checkpoint
 };
 
+// Lowers each entry of `best` to the lowest value of the matching row of f (objectives x n);
+// when `best` has another length it starts over at +infinity. Returns whether any entry fell or
+// `best` started over.
+bool LowerBest(const Eigen::MatrixXd& f, std::vector<double>& best);
+
 // Call Update after every generation (and after Initialize), then Check.
 class StopTracker {
  public:
