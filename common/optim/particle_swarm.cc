@@ -41,8 +41,7 @@ void ParticleSwarm::DoInitialize(const Problem& problem, Rng& rng) {
   }
 }
 
-std::size_t ParticleSwarm::Leader(std::size_t particle) const {
-  if (params_.neighbourhood == PsoNeighbourhood::kGlobal) return population_.BestIndex();
+std::size_t ParticleSwarm::RingLeader(std::size_t particle) const {
   const std::size_t n = population_.size();
   const std::size_t candidates[3] = {(particle + n - 1) % n, particle, (particle + 1) % n};
   std::size_t leader = candidates[0];
@@ -63,7 +62,7 @@ void ParticleSwarm::DoStep(const Problem& problem, Rng& rng) {
   for (Eigen::Index i = 0; i < position_.cols(); ++i) {
     const auto leader = static_cast<Eigen::Index>(params_.neighbourhood == PsoNeighbourhood::kGlobal
                                                       ? global
-                                                      : Leader(static_cast<std::size_t>(i)));
+                                                      : RingLeader(static_cast<std::size_t>(i)));
     for (Eigen::Index j = 0; j < position_.rows(); ++j) {
       const double r1 = rng.Uniform();
       const double r2 = rng.Uniform();

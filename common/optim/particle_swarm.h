@@ -48,7 +48,8 @@ class ParticleSwarm : public Algorithm {
   void RestoreMemory(const std::map<std::string, Eigen::MatrixXd>& memory) override;
 
  private:
-  std::size_t Leader(std::size_t particle) const;
+  // The best personal best among the particle and its two ring neighbours, first on ties.
+  std::size_t RingLeader(std::size_t particle) const;
 
   PsoParams params_;
   Eigen::MatrixXd position_;
