@@ -10,6 +10,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "common/util/error.h"
 
@@ -82,18 +83,34 @@ StopCriteria IslandStopCriteria(const StopCriteria& global, std::size_t index, s
   return c;
 }
 
+namespace {
+
+std::vector<Island> FreshIslands(const IslandModelParams& params, const StopCriteria& stop,
+                                 std::uint64_t seed) {
+  const Rng root(seed);
+  std::vector<Island> islands;
+  islands.reserve(params.islands);
+  for (std::size_t i = 0; i < params.islands; ++i) {
+    islands.emplace_back(params.algorithm,
+                         IslandStopCriteria(stop, i, params.islands, params.asynchronous),
+                         root.Stream(i));
+  }
+  return islands;
+}
+
+}  // namespace
+
 Archipelago::Archipelago(const IslandModelParams& params, const StopCriteria& stop,
                          std::uint64_t seed)
-    : params_(params), stop_(stop), seed_(seed) {
+    : Archipelago(params, stop, seed, {}) {
+  islands_ = FreshIslands(params_, stop_, seed_);
+}
+
+Archipelago::Archipelago(const IslandModelParams& params, const StopCriteria& stop,
+                         std::uint64_t seed, std::vector<Island> islands)
+    : params_(params), stop_(stop), seed_(seed), islands_(std::move(islands)) {
   ValidateIslandModelParams(params_);
   ValidateStopCriteria(stop_);
-  const Rng root(seed_);
-  islands_.reserve(params_.islands);
-  for (std::size_t i = 0; i < params_.islands; ++i) {
-    islands_.emplace_back(params_.algorithm,
-                          IslandStopCriteria(stop_, i, params_.islands, params_.asynchronous),
-                          root.Stream(i));
-  }
 }
 
 Archipelago Archipelago::FromCheckpoint(const ArchipelagoCheckpoint& checkpoint) {
@@ -101,10 +118,11 @@ Archipelago Archipelago::FromCheckpoint(const ArchipelagoCheckpoint& checkpoint)
     throw Error("archipelago checkpoint holds " + std::to_string(checkpoint.islands.size()) +
                 " islands, its settings say " + std::to_string(checkpoint.params.islands));
   }
-  Archipelago a(checkpoint.params, checkpoint.stop, checkpoint.seed);
-  a.islands_.clear();
+  std::vector<Island> islands;
+  islands.reserve(checkpoint.islands.size());
   for (const IslandCheckpoint& island : checkpoint.islands)
-    a.islands_.push_back(Island::FromCheckpoint(island));
+    islands.push_back(Island::FromCheckpoint(island));
+  Archipelago a(checkpoint.params, checkpoint.stop, checkpoint.seed, std::move(islands));
   a.epoch_ = checkpoint.epoch;
   a.progress_ = checkpoint.progress;
   a.started_ = true;

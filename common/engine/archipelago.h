@@ -78,6 +78,10 @@ class Archipelago {
   Population Merged() const;
 
  private:
+  // Validates the settings and takes the islands as they are.
+  Archipelago(const IslandModelParams& params, const StopCriteria& stop, std::uint64_t seed,
+              std::vector<Island> islands);
+
   std::optional<StopReason> CheckGlobal(double elapsed_seconds);
   void Migrate(std::size_t epoch);
   StopReason RunAsynchronous(const Problem& problem,
