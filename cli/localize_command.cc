@@ -1,28 +1,21 @@
-#include <omp.h>
 #include <spdlog/spdlog.h>
 
-#include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <memory>
 #include <numbers>
 #include <set>
-#include <sstream>
 #include <string>
 
 #include "cli/commands.h"
+#include "cli/embedded_service.h"
+#include "cli/job_client.h"
 #include "cli/option_parsing.h"
-#include "common/engine/engine_proto.h"
+#include "cli/service_options.h"
 #include "common/engine/presets.h"
-#include "common/eval/trajectory_errors.h"
-#include "common/grid/map_io.h"
-#include "common/io/carmen_reader.h"
-#include "common/io/relations.h"
-#include "common/io/trajectory_io.h"
+#include "common/localization/localize_params.h"
 #include "common/localization/localizer.h"
-#include "common/report/localize_report.h"
-#include "common/report/map_picture.h"
+#include "common/service/service_client.h"
 #include "common/util/error.h"
-#include "common/util/progress_bar.h"
 
 namespace evoslam::cli {
 namespace {
@@ -44,18 +37,11 @@ struct LocalizeArgs {
   std::set<std::string> given;  // options set on the command line, which override a preset
   double exhaustive_step = 0.01, max_range = 0.0, grid_resolution = 0.05;
   std::uint64_t seed = 1;
-  bool use_odometry = false, lenient = false;
+  bool use_odometry = false, lenient = false, detach = false;
   int threads = 0;
+  std::size_t workers = 0;
+  ServiceArgs service;
 };
-
-// A grid of the log's reference poses: ground truth where the log has it, else its stated poses.
-OccupancyGrid GridFromLog(const std::string& path, double resolution, bool lenient) {
-  const Dataset dataset = ReadCarmen(path, {.lenient = lenient});
-  std::vector<Pose2> poses;
-  for (const LaserScan& s : dataset.scans) poses.push_back(s.true_pose.value_or(s.pose));
-  spdlog::info("building a {:.3f} m grid from {} scans of {}", resolution, poses.size(), path);
-  return OccupancyGrid::FromScans(dataset.scans, poses, resolution, 1.0);
-}
 
 // The job's options from the command line. Values the parser could not check alone (the DE
 // strategy, the start pose, parameters that only make sense together) are refused here as
@@ -122,129 +108,71 @@ LocalizeOptions OptionsFrom(const LocalizeArgs& a) try {
   throw CLI::ValidationError(e.what());
 }
 
-void Run(const LocalizeArgs& a) {
-  const LocalizeOptions options = OptionsFrom(a);
-  if (a.threads > 0) omp_set_num_threads(a.threads);
-
-  const std::filesystem::path out(a.out);
-  std::filesystem::create_directories(out);
-
-  CarmenReadStats stats;
-  const Dataset dataset = ReadCarmen(a.log, {.lenient = a.lenient}, &stats);
-  if (stats.skipped > 0) {
-    spdlog::warn("{}: skipped {} malformed lines (first: {})", a.log, stats.skipped,
-                 stats.first_skip_reason);
-  }
-  const MapModel map = a.map.empty()
-                           ? MapModel(GridFromLog(a.map_from_log, a.grid_resolution, a.lenient))
-                           : LoadMapModel(a.map);
-  std::vector<std::string> outputs;
-  if (!a.map_from_log.empty()) {
-    WriteMapYaml(*map.grid(), out / "map.yaml");
-    outputs.insert(outputs.end(), {"map.yaml", "map.pgm"});
-  }
-
-  spdlog::info("localizing {} scans with {} / {} / {}", dataset.scans.size(), a.fitness,
-               a.estimator, a.optimizer);
-  LocalizeResult result;
-  {
-    ProgressBar bar("localize", options.max_scans
-                                    ? std::min(options.max_scans, dataset.scans.size())
-                                    : dataset.scans.size());
-    result =
-        Localize(map, dataset, options, [&](std::size_t done, std::size_t) { bar.Update(done); });
-  }
-
-  WriteTrajectoryText(result.trajectory, out / "trajectory.txt");
-  WriteTrajectoryTum(result.trajectory, out / "trajectory.tum");
-  outputs.insert(outputs.end(), {"trajectory.txt", "trajectory.tum"});
-
-  proto::LocalizeReport report;
-  report.set_format_version(1);
-  report.set_evoslam_version("0.1.0");
-  auto& p = *report.mutable_params();
+// The job the command line describes, its datasets uploaded through `client`.
+proto::JobSpec JobFrom(const LocalizeArgs& a, const LocalizeOptions& options,
+                       ServiceClient& client) {
+  proto::JobSpec spec;
+  spec.set_kind(proto::JOB_KIND_LOCALIZE);
+  proto::LocalizeParams& p = *spec.mutable_localize();
+  p = ToProto(options);
   p.set_map(a.map.empty() ? "grid from " + a.map_from_log : a.map);
   p.set_log(a.log);
-  p.set_fitness(a.fitness);
-  p.set_estimator(a.estimator);
-  // The effective settings, after any preset, so the report says what actually ran.
-  const EstimatorParams& e = options.estimator;
-  p.set_optimizer(e.optimizer == OptimizerKind::kAlgorithm
-                      ? std::string(AlgorithmKindName(e.algorithm.kind))
-                      : a.optimizer);
   p.set_preset(a.preset);
-  p.set_strategy(std::string(DeStrategyName(e.algorithm.de.strategy)));
-  p.set_population(static_cast<std::uint32_t>(PopulationSize(e.algorithm)));
-  p.set_generations(static_cast<std::uint32_t>(e.generations));
-  p.set_f(e.algorithm.de.f);
-  p.set_cr(e.algorithm.de.cr);
-  p.set_pso_inertia(e.algorithm.pso.inertia);
-  p.set_pso_c1(e.algorithm.pso.c1);
-  p.set_pso_c2(e.algorithm.pso.c2);
-  p.set_pso_vmax_fraction(e.algorithm.pso.vmax_fraction);
-  p.set_pso_neighbourhood(std::string(PsoNeighbourhoodName(e.algorithm.pso.neighbourhood)));
-  if (e.optimizer != OptimizerKind::kExhaustive) *p.mutable_algorithm() = ToProto(e.algorithm);
-  if (e.optimizer == OptimizerKind::kIsland) {
-    p.set_islands(static_cast<std::uint32_t>(a.islands));
-    p.set_island_algorithm(std::string(AlgorithmKindName(e.algorithm.kind)));
-    p.set_migration_interval(static_cast<std::uint32_t>(a.migration_interval));
-    p.set_migrants(static_cast<std::uint32_t>(a.migrants));
-    p.set_topology(a.topology);
-    p.set_migration_policy(a.migration_policy);
+  p.set_map_from_log(!a.map_from_log.empty());
+  p.set_grid_resolution_m(a.grid_resolution);
+  p.set_lenient(a.lenient);
+  *spec.mutable_log() = client.Upload(a.log);
+  if (a.map.empty()) {
+    *spec.mutable_map() = client.Upload(a.map_from_log);
+  } else {
+    UploadMap(client, a.map, spec);
   }
-  p.set_window_m(a.window);
-  p.set_heading_window_deg(a.heading_window);
-  p.set_heading_step_deg(a.heading_step);
-  p.set_use_odometry(a.use_odometry);
-  p.set_seed(a.seed);
-  p.set_max_range_m(a.max_range);
-  p.set_max_scans(static_cast<std::uint32_t>(a.max_scans));
-  if (options.start) {
-    for (double v : {options.start->x(), options.start->y(), options.start->theta()})
-      p.add_start(v);
-  }
-  report.set_scans(static_cast<std::uint32_t>(result.trajectory.size()));
-  report.set_evaluations(result.evaluations);
-  report.set_runtime_s(result.seconds);
-  report.set_scans_per_second(result.seconds > 0 ? result.trajectory.size() / result.seconds : 0);
-  report.set_threads(static_cast<std::uint32_t>(omp_get_max_threads()));
+  if (!a.relations.empty()) *spec.mutable_relations() = client.Upload(a.relations);
+  return spec;
+}
 
-  std::vector<StampedPose> truth;
-  for (std::size_t i = 0; i < result.trajectory.size(); ++i) {
-    const LaserScan& s = dataset.scans[i];
-    if (s.true_pose) truth.push_back({s.timestamp, *s.true_pose});
+void Run(const LocalizeArgs& a) {
+  const LocalizeOptions options = OptionsFrom(a);
+  if (!a.service.coordinator.empty() && (a.given.contains("--workers"))) {
+    throw CLI::ValidationError(
+        "--workers sets the embedded workers; with --coordinator, start "
+        "evoslam-worker processes instead");
   }
-  if (!truth.empty()) {
-    *report.mutable_absolute_errors() = ToProto(ComputeAbsoluteErrors(result.trajectory, truth));
+  if (a.service.coordinator.empty() && a.detach) {
+    throw CLI::ValidationError(
+        "--detach needs --coordinator: an embedded job ends with the command");
   }
-  if (!a.relations.empty()) {
-    *report.mutable_relation_errors() =
-        ToProto(ComputeRelationErrors(result.trajectory, ReadRelations(a.relations)), a.relations);
-  } else if (truth.size() > 1) {
-    *report.mutable_relation_errors() =
-        ToProto(ComputeRelationErrors(result.trajectory, RelationsFromTruth(truth)),
-                "ground truth, consecutive scans");
+  std::unique_ptr<zmq::context_t> own_context;
+  std::unique_ptr<EmbeddedService> embedded;
+  std::unique_ptr<ServiceClient> client;
+  if (a.service.coordinator.empty()) {
+    const EmbeddedLayout layout = ChooseEmbeddedLayout(
+        options.estimator.optimizer == OptimizerKind::kIsland ? options.estimator.islands : 1,
+        a.workers, a.threads);
+    spdlog::debug("embedded: {} workers of {} threads", layout.workers, layout.threads);
+    embedded = std::make_unique<EmbeddedService>(layout.workers, layout.threads);
+    client = std::make_unique<ServiceClient>(embedded->context(), embedded->client_options());
+  } else {
+    own_context = std::make_unique<zmq::context_t>();
+    client = std::make_unique<ServiceClient>(*own_context, ClientOptionsFrom(a.service));
   }
 
-  std::vector<TrajectoryLayer> layers;
-  if (!truth.empty()) {
-    TrajectoryLayer t{"truth", {}, {0, 160, 0}};
-    for (const auto& s : truth) t.poses.push_back(s.pose);
-    layers.push_back(std::move(t));
+  const proto::JobSpec spec = JobFrom(a, options, *client);
+  const std::string job_id = client->Submit(spec);
+  if (a.detach) {
+    std::printf("%s\n", job_id.c_str());
+    return;
   }
-  TrajectoryLayer estimated{"estimate", {}, {220, 30, 30}};
-  for (const auto& s : result.trajectory) estimated.poses.push_back(s.pose);
-  layers.push_back(std::move(estimated));
-  WriteMapPicture(map, layers, out / "map.png");
-  outputs.insert(outputs.end(), {"map.png", "report.json", "summary.txt"});
-  for (const auto& o : outputs) report.add_outputs(o);
-
-  WriteJson(report, out / "report.json");
-  const std::string summary = FormatSummary(report);
-  std::ofstream(out / "summary.txt") << summary;
-  std::printf("%s", summary.c_str());
-  std::printf("  wrote %s/{trajectory.txt,trajectory.tum,report.json,summary.txt,map.png}\n",
-              a.out.c_str());
+  spdlog::info("{}: localizing with {} / {} / {}", job_id, a.fitness, a.estimator,
+               spec.localize().optimizer());
+  const std::vector<proto::ResultFile> files = FollowToResult(*client, job_id);
+  WriteResultFiles(files, a.out);
+  std::string names;
+  for (const proto::ResultFile& f : files) {
+    if (f.name() == "summary.txt") std::printf("%s", f.content().c_str());
+    names += (names.empty() ? "" : ",") + f.name();
+  }
+  std::printf("  wrote %s/{%s}\n", a.out.c_str(), names.c_str());
 }
 
 }  // namespace
@@ -327,14 +255,22 @@ void AddLocalizeCommand(CLI::App& app) {
   cmd->add_option("--max-scans", a->max_scans, "localize only the first N scans");
   cmd->add_option("--relations", a->relations, "relations file for the relative error");
   cmd->add_option("--seed", a->seed, "random seed");
-  cmd->add_option("--threads", a->threads, "OpenMP threads (default: all cores)")
+  cmd->add_option("--threads", a->threads,
+                  "embedded: threads per worker (default: the cores shared among the workers)")
       ->check(CLI::Range(1, 1024));
+  cmd->add_option("--workers", a->workers,
+                  "embedded: workers in this process (default: one per island, at most one "
+                  "per core)")
+      ->check(CLI::Range(1, 1024));
+  AddServiceOptions(cmd, a->service, true);
+  cmd->add_flag("--detach", a->detach, "with --coordinator: print the job id and return at once");
   cmd->add_flag("--lenient", a->lenient, "skip malformed log lines");
-  cmd->add_option("--out", a->out, "output directory")->required();
+  cmd->add_option("--out", a->out, "output directory");
   cmd->callback([a, cmd] {
     for (const CLI::Option* option : cmd->get_options()) {
       if (option->count() > 0) a->given.insert(option->get_name());
     }
+    if (a->out.empty() && !a->detach) throw CLI::RequiredError("--out");
     Run(*a);
   });
 }

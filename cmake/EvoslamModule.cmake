@@ -1,5 +1,6 @@
 # evoslam_module(NAME DEPS <targets...>)
-# Builds the library evoslam_<NAME> from the *.cc files of the calling folder and, with tests on,
+# Builds the library evoslam_<NAME> from the *.cc files of the calling folder (a program's
+# *_main.cc excepted) and, with tests on,
 # the test binary evoslam_<NAME>_tests from its *_test.cc files. Each module is its own target so
 # that one module can be built and tested while another is being changed.
 # -Wrestrict is off: GCC 12 reports false positives on std::string concatenation at -O3
@@ -18,8 +19,9 @@ function(evoslam_module NAME)
   cmake_parse_arguments(ARG "" "" "DEPS;TEST_DEPS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/*.cc")
   file(GLOB tests CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/*_test.cc")
-  if(tests)
-    list(REMOVE_ITEM sources ${tests})
+  file(GLOB mains CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/*_main.cc")
+  if(tests OR mains)
+    list(REMOVE_ITEM sources ${tests} ${mains})
   endif()
   set(target evoslam_${NAME})
   if(sources)

@@ -136,25 +136,47 @@ void JobStore::SetRunning(const std::string& job_id, const std::string& phase, s
                           std::uint64_t total, std::uint64_t evaluations) {
   Statement update = db_.Prepare(
       "UPDATE jobs SET state = ?2, phase = ?3, done = ?4, total = ?5, evaluations = ?6"
-      " WHERE id = ?1");
+      " WHERE id = ?1 AND state IN (?7, ?2)");
   update.Bind(1, JobNumber(job_id))
       .Bind(2, static_cast<std::int64_t>(proto::JOB_STATE_RUNNING))
       .Bind(3, phase)
       .Bind(4, static_cast<std::int64_t>(done))
       .Bind(5, static_cast<std::int64_t>(total))
       .Bind(6, static_cast<std::int64_t>(evaluations))
+      .Bind(7, static_cast<std::int64_t>(proto::JOB_STATE_QUEUED))
       .Run();
 }
 
-void JobStore::Finish(const std::string& job_id, proto::JobState state, const std::string& error,
+bool JobStore::Finish(const std::string& job_id, proto::JobState state, const std::string& error,
                       double now_unix_s) {
-  Statement update =
-      db_.Prepare("UPDATE jobs SET state = ?2, error = ?3, finished = ?4 WHERE id = ?1");
+  Statement update = db_.Prepare(
+      "UPDATE jobs SET state = ?2, error = ?3, finished = ?4 WHERE id = ?1 AND state IN (?5, ?6)");
   update.Bind(1, JobNumber(job_id))
       .Bind(2, static_cast<std::int64_t>(state))
       .Bind(3, error)
       .Bind(4, now_unix_s)
+      .Bind(5, static_cast<std::int64_t>(proto::JOB_STATE_QUEUED))
+      .Bind(6, static_cast<std::int64_t>(proto::JOB_STATE_RUNNING))
       .Run();
+  return db_.Changes() > 0;
+}
+
+bool JobStore::Succeed(const std::string& job_id, const std::vector<proto::ResultFile>& files,
+                       double now_unix_s) {
+  bool finished = false;
+  db_.Transaction([&] {
+    finished = Finish(job_id, proto::JOB_STATE_SUCCEEDED, "", now_unix_s);
+    if (finished) SaveResult(job_id, files);
+  });
+  return finished;
+}
+
+std::size_t JobStore::CountUnfinished() {
+  Statement q = db_.Prepare("SELECT COUNT(*) FROM jobs WHERE state IN (?1, ?2)");
+  q.Bind(1, static_cast<std::int64_t>(proto::JOB_STATE_QUEUED))
+      .Bind(2, static_cast<std::int64_t>(proto::JOB_STATE_RUNNING));
+  q.Step();
+  return static_cast<std::size_t>(q.Int(0));
 }
 
 void JobStore::SaveCheckpoint(const std::string& job_id, std::uint32_t island, std::uint64_t epoch,
@@ -182,13 +204,11 @@ std::vector<JobStore::Checkpoint> JobStore::Checkpoints(const std::string& job_i
 }
 
 void JobStore::SaveResult(const std::string& job_id, const std::vector<proto::ResultFile>& files) {
-  db_.Transaction([&] {
-    Statement insert =
-        db_.Prepare("INSERT OR REPLACE INTO results (job, name, content) VALUES (?1, ?2, ?3)");
-    for (const proto::ResultFile& f : files) {
-      insert.Bind(1, JobNumber(job_id)).Bind(2, f.name()).BindBlob(3, f.content()).Run();
-    }
-  });
+  Statement insert =
+      db_.Prepare("INSERT OR REPLACE INTO results (job, name, content) VALUES (?1, ?2, ?3)");
+  for (const proto::ResultFile& f : files) {
+    insert.Bind(1, JobNumber(job_id)).Bind(2, f.name()).BindBlob(3, f.content()).Run();
+  }
 }
 
 std::vector<proto::ResultFile> JobStore::Result(const std::string& job_id) {

@@ -36,12 +36,17 @@ class JobStore {
 
   void SetRunning(const std::string& job_id, const std::string& phase, std::uint64_t done,
                   std::uint64_t total, std::uint64_t evaluations);
-  // Ends a job; `error` is empty unless it failed.
-  void Finish(const std::string& job_id, proto::JobState state, const std::string& error,
+  // Ends a job still queued or running; `error` is empty unless it failed. False when the job
+  // had already ended (it was cancelled meanwhile, say): a job ends once.
+  bool Finish(const std::string& job_id, proto::JobState state, const std::string& error,
               double now_unix_s);
+  // Ends a job as succeeded with its result files, in one transaction; false as Finish.
+  bool Succeed(const std::string& job_id, const std::vector<proto::ResultFile>& files,
+               double now_unix_s);
+  std::size_t CountUnfinished();
 
-  // The latest checkpoint of each island of a job, replaced at every migration epoch. `bytes` is
-  // a serialised proto::IslandCheckpoint.
+  // A job's latest checkpoints, one per slot (a localization keeps one, its whole state; an
+  // island job may keep one per island), replaced as the job advances.
   void SaveCheckpoint(const std::string& job_id, std::uint32_t island, std::uint64_t epoch,
                       const std::string& bytes);
   struct Checkpoint {
@@ -51,10 +56,10 @@ class JobStore {
   };
   std::vector<Checkpoint> Checkpoints(const std::string& job_id);
 
-  void SaveResult(const std::string& job_id, const std::vector<proto::ResultFile>& files);
   std::vector<proto::ResultFile> Result(const std::string& job_id);
 
  private:
+  void SaveResult(const std::string& job_id, const std::vector<proto::ResultFile>& files);
   std::int64_t JobNumber(const std::string& job_id) const;
 
   Database db_;

@@ -34,7 +34,12 @@ TEST_F(JobStoreTest, JobsKeepTheirSpecStateAndOrderAcrossReopening) {
     EXPECT_EQ(store.AddJob(LocalizeSpec(1), 100.0), "job-1");
     EXPECT_EQ(store.AddJob(LocalizeSpec(2), 101.0), "job-2");
     store.SetRunning("job-1", "localize", 5, 40, 1234);
-    store.Finish("job-2", proto::JOB_STATE_FAILED, "scan 3: no map", 102.0);
+    EXPECT_TRUE(store.Finish("job-2", proto::JOB_STATE_FAILED, "scan 3: no map", 102.0));
+    // A job ends once: neither a later success nor progress overrides how it ended.
+    EXPECT_FALSE(store.Finish("job-2", proto::JOB_STATE_CANCELLED, "", 103.0));
+    EXPECT_FALSE(store.Succeed("job-2", {}, 103.0));
+    store.SetRunning("job-2", "localize", 1, 2, 3);
+    EXPECT_EQ(store.CountUnfinished(), 1u);
   }
   JobStore store(Db());
   const std::vector<proto::JobStatus> jobs = store.Jobs();
@@ -92,8 +97,7 @@ TEST_F(JobStoreTest, DatasetsAndResultsRoundTrip) {
   trajectory.set_content("0 0 0 0\n");
   report.set_name("report.json");
   report.set_content("{}");
-  store.SaveResult(job, {trajectory, report});
-  store.Finish(job, proto::JOB_STATE_SUCCEEDED, "", 2.0);
+  EXPECT_TRUE(store.Succeed(job, {trajectory, report}, 2.0));
   const auto files = store.Result(job);
   ASSERT_EQ(files.size(), 2u);
   EXPECT_EQ(files[0].name(), "report.json");

@@ -49,6 +49,8 @@ class Database {
   void Execute(std::string_view sql);  // statements without parameters or results
   Statement Prepare(std::string_view sql) { return Statement(db_.get(), sql); }
   std::int64_t LastInsertId() const { return sqlite3_last_insert_rowid(db_.get()); }
+  // Rows changed by the last INSERT, UPDATE or DELETE.
+  int Changes() const { return sqlite3_changes(db_.get()); }
 
   // Runs body inside BEGIN IMMEDIATE ... COMMIT; rolls back if it throws.
   template <typename Body>

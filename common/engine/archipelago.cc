@@ -135,9 +135,23 @@ std::size_t Archipelago::Threads() const {
   return std::clamp<std::size_t>(wanted, 1, islands_.size());
 }
 
-void Archipelago::Start(const Problem& problem) {
+IslandStepper LocalIslandStepper(const Problem& problem, std::size_t threads) {
+  return [&problem, threads](std::vector<Island>& islands, bool start, std::size_t generations) {
+    const std::size_t wanted =
+        threads > 0 ? threads : static_cast<std::size_t>(omp_get_max_threads());
+    ForEachIsland(islands.size(), std::clamp<std::size_t>(wanted, 1, islands.size()),
+                  [&](std::size_t i) {
+                    if (start) islands[i].Start(problem);
+                    if (generations > 0) islands[i].Evolve(problem, generations);
+                  });
+  };
+}
+
+void Archipelago::Start(const Problem& problem) { Start(LocalIslandStepper(problem, Threads())); }
+
+void Archipelago::Start(const IslandStepper& step) {
   const auto start = std::chrono::steady_clock::now();
-  ForEachIsland(islands_.size(), Threads(), [&](std::size_t i) { islands_[i].Start(problem); });
+  step(islands_, true, 0);
   epoch_ = 0;
   progress_ = StopProgress{};
   ImproveBest(islands_, progress_.best);
@@ -146,12 +160,15 @@ void Archipelago::Start(const Problem& problem) {
 }
 
 std::optional<StopReason> Archipelago::RunEpoch(const Problem& problem) {
+  return RunEpoch(LocalIslandStepper(problem, Threads()));
+}
+
+std::optional<StopReason> Archipelago::RunEpoch(const IslandStepper& step) {
   if (!started_) throw Error("archipelago: RunEpoch before Start");
   if (const auto done = CheckGlobal(progress_.elapsed_seconds)) return done;
   const auto start = std::chrono::steady_clock::now();
   const double before = progress_.elapsed_seconds;
-  ForEachIsland(islands_.size(), Threads(),
-                [&](std::size_t i) { islands_[i].Evolve(problem, params_.migration.interval); });
+  step(islands_, false, params_.migration.interval);
   ++epoch_;
   Migrate(epoch_);
   if (ImproveBest(islands_, progress_.best)) {

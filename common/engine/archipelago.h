@@ -50,6 +50,15 @@ struct EpochReport {
   double best = 0.0;  // lowest first objective over all islands
 };
 
+// Evolves a set of islands in place: starts each first when `start`, then runs each for up to
+// `generations` generations. The archipelago's own stepper runs them on local threads; the
+// service's sends them to workers, and both leave the islands in the same state.
+using IslandStepper =
+    std::function<void(std::vector<Island>& islands, bool start, std::size_t generations)>;
+
+// Runs the islands on up to `threads` local threads (0: omp_get_max_threads()).
+IslandStepper LocalIslandStepper(const Problem& problem, std::size_t threads = 0);
+
 // The stop criteria apply to the archipelago as a whole: the evaluation budget is shared evenly
 // among the islands, the generation limit is per island (they advance together), the target is
 // met when any island meets it, stagnation counts generations without the best of all islands
@@ -60,9 +69,11 @@ class Archipelago {
   static Archipelago FromCheckpoint(const ArchipelagoCheckpoint& checkpoint);
 
   void Start(const Problem& problem);
+  void Start(const IslandStepper& step);
   // Synchronous mode: one epoch (evolution, then migration). Returns the stop reason when the
   // run is over.
   std::optional<StopReason> RunEpoch(const Problem& problem);
+  std::optional<StopReason> RunEpoch(const IslandStepper& step);
   // Start (unless restored or started) and run to the end in the configured mode.
   StopReason Run(const Problem& problem,
                  const std::function<void(const EpochReport&)>& on_epoch = {});

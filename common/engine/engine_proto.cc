@@ -395,7 +395,7 @@ IslandCheckpoint FromProto(const proto::IslandCheckpoint& c) {
   out.progress = FromProto(c.progress());
   out.stopped = ParseStopReason(c.stop_reason());
   // A trial restore catches shapes that do not fit the parameters before anyone relies on them.
-  MakeAlgorithm(out.algorithm)->Restore(out.state);
+  if (!IsUnstarted(out.state)) MakeAlgorithm(out.algorithm)->Restore(out.state);
   return out;
 }
 

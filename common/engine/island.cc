@@ -6,12 +6,16 @@
 
 namespace evoslam {
 
+bool IsUnstarted(const AlgorithmState& state) {
+  return state.population.size() == 0 && state.generation == 0 && state.evaluations == 0;
+}
+
 Island::Island(const AlgorithmSpec& spec, const StopCriteria& stop, Rng rng)
     : spec_(spec), algorithm_(MakeAlgorithm(spec)), tracker_(stop), rng_(rng) {}
 
 Island Island::FromCheckpoint(const IslandCheckpoint& checkpoint) {
   Island island(checkpoint.algorithm, checkpoint.stop, Rng::FromState(checkpoint.rng));
-  island.algorithm_->Restore(checkpoint.state);
+  if (!IsUnstarted(checkpoint.state)) island.algorithm_->Restore(checkpoint.state);
   island.tracker_ = StopTracker(checkpoint.stop, checkpoint.progress);
   island.stopped_ = checkpoint.stopped;
   return island;

@@ -21,6 +21,10 @@ struct IslandCheckpoint {
   std::optional<StopReason> stopped;
 };
 
+// True for the state of an algorithm saved before its first population was drawn: nothing to
+// restore. The service ships islands to workers before their first generation too.
+bool IsUnstarted(const AlgorithmState& state);
+
 // One algorithm instance with its own random stream and stop bookkeeping: the unit that migrates
 // between threads and, through the service, between workers.
 class Island {

@@ -7,45 +7,104 @@
 
 namespace evoslam {
 
+std::size_t ScansToLocalize(const Dataset& dataset, const LocalizeOptions& options) {
+  return options.max_scans > 0 ? std::min(options.max_scans, dataset.scans.size())
+                               : dataset.scans.size();
+}
+
+double ScanMaxRange(const Dataset& dataset, std::size_t scan, const LocalizeOptions& options) {
+  const double range_max = dataset.scans.at(scan).range_max;
+  return options.max_range > 0.0 ? std::min(options.max_range, range_max) : range_max;
+}
+
+ScanWindow WindowOf(const Dataset& dataset, std::size_t scan, const Pose2& previous,
+                    const LocalizeOptions& options) {
+  ScanWindow w{previous, ScanMaxRange(dataset, scan, options)};
+  if (options.use_odometry && scan > 0) {
+    w.center =
+        previous * (dataset.scans[scan - 1].odometry.inverse() * dataset.scans[scan].odometry);
+  }
+  return w;
+}
+
+namespace {
+
+std::unique_ptr<RangeRenderer> WindowRenderer(const MapModel& map, const Pose2& center,
+                                              double max_range, const LocalizeOptions& options) {
+  return map.LocalRenderer(center.translation(),
+                           max_range + std::sqrt(0.5) * options.estimator.window);
+}
+
+}  // namespace
+
+ScanProblem MakeScanProblem(const MapModel& map, const Dataset& dataset, std::size_t scan,
+                            const Pose2& center, const LocalizeOptions& options) {
+  const double max_range = ScanMaxRange(dataset, scan, options);
+  ScanProblem p;
+  p.renderer = WindowRenderer(map, center, max_range, options);
+  p.problem = MakeScanProblem(*p.renderer, dataset.scans.at(scan), center, options.estimator,
+                              static_cast<float>(max_range));
+  return p;
+}
+
 LocalizeResult Localize(const MapModel& map, const Dataset& dataset, const LocalizeOptions& options,
                         const std::function<void(std::size_t, std::size_t)>& progress) {
+  LocalizeRuntime runtime;
+  runtime.progress = progress;
+  return Localize(map, dataset, options, runtime);
+}
+
+LocalizeResult Localize(const MapModel& map, const Dataset& dataset, const LocalizeOptions& options,
+                        const LocalizeRuntime& runtime) {
   ValidateEstimatorParams(options.estimator);
   if (dataset.scans.empty()) throw Error(dataset.source + ": the log has no laser scans");
   if (options.max_range < 0.0) throw Error("max range must not be negative");
   const auto start_time = std::chrono::steady_clock::now();
 
-  const std::size_t total = options.max_scans > 0
-                                ? std::min(options.max_scans, dataset.scans.size())
-                                : dataset.scans.size();
+  const std::size_t total = ScansToLocalize(dataset, options);
   const Rng root(options.seed);
-  const double half_diagonal = std::sqrt(0.5) * options.estimator.window;
 
-  LocalizeResult result;
+  LocalizeState state;
+  if (runtime.resume) {
+    state = *runtime.resume;
+    if (state.next_scan > total || state.done.trajectory.size() != state.next_scan) {
+      throw Error("localization checkpoint does not fit the job: it has " +
+                  std::to_string(state.done.trajectory.size()) + " poses for scan " +
+                  std::to_string(state.next_scan) + " of " + std::to_string(total));
+    }
+  }
+  LocalizeResult& result = state.done;
   result.trajectory.reserve(total);
   result.fitness.reserve(total);
-  Pose2 previous = options.start.value_or(dataset.scans.front().pose);
-  for (std::size_t i = 0; i < total; ++i) {
+  for (std::size_t i = state.next_scan; i < total; ++i) {
     const LaserScan& scan = dataset.scans[i];
-    Pose2 center = previous;
-    if (options.use_odometry && i > 0) {
-      center = previous * (dataset.scans[i - 1].odometry.inverse() * scan.odometry);
+    const Pose2 previous =
+        i > 0 ? result.trajectory.back().pose : options.start.value_or(dataset.scans.front().pose);
+    const ScanWindow window = WindowOf(dataset, i, previous, options);
+    const auto renderer = WindowRenderer(map, window.center, window.max_range, options);
+    SearchRuntime search = runtime.search ? runtime.search(i, window.center) : SearchRuntime{};
+    search.resume = std::move(state.search);
+    state.search.reset();
+    if (runtime.checkpoint) {
+      search.on_epoch = [&](const ArchipelagoCheckpoint& epoch) {
+        state.search = epoch;
+        runtime.checkpoint(state);
+        state.search.reset();
+      };
     }
-    const double range =
-        options.max_range > 0.0 ? std::min(options.max_range, scan.range_max) : scan.range_max;
-    const auto max_range = static_cast<float>(range);
-    const auto renderer = map.LocalRenderer(center.translation(), range + half_diagonal);
     Rng rng = root.Stream(i);
-    const PoseEstimate estimate =
-        EstimatePose(*renderer, scan, center, options.estimator, max_range, rng);
+    const PoseEstimate estimate = EstimatePose(*renderer, scan, window.center, options.estimator,
+                                               static_cast<float>(window.max_range), rng, search);
     result.trajectory.push_back({scan.timestamp, estimate.pose});
     result.fitness.push_back(estimate.fitness);
     result.evaluations += estimate.evaluations;
-    previous = estimate.pose;
-    if (progress) progress(i + 1, total);
+    state.next_scan = i + 1;
+    if (runtime.checkpoint) runtime.checkpoint(state);
+    if (runtime.progress) runtime.progress(i + 1, total);
   }
   result.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
-  return result;
+  return std::move(result);
 }
 
 }  // namespace evoslam

@@ -1,6 +1,7 @@
 #include "common/localization/pose_estimator.h"
 
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -72,21 +73,53 @@ void ValidateEstimatorParams(const EstimatorParams& params) {
 
 namespace {
 
+OptimResult BestOf(const Island& island) {
+  const Algorithm& a = island.algorithm();
+  OptimResult r;
+  r.best = a.champion_x();
+  r.best_fitness =
+      a.champion_f().size() > 0 ? a.champion_f()(0) : std::numeric_limits<double>::quiet_NaN();
+  r.evaluations = a.evaluations();
+  r.generations = a.generation();
+  return r;
+}
+
 OptimResult Optimize(const Problem& problem, const EstimatorParams& params,
-                     const Eigen::VectorXd& steps, Rng& rng) {
+                     const Eigen::VectorXd& steps, Rng& rng, const SearchRuntime& runtime) {
+  const IslandStepper step =
+      runtime.step
+          ? IslandStepper([&](std::vector<Island>& islands, bool start, std::size_t generations) {
+              runtime.step(problem, islands, start, generations);
+            })
+          : LocalIslandStepper(problem);
   StopCriteria stop;
   stop.max_generations = params.generations;
   switch (params.optimizer) {
     case OptimizerKind::kAlgorithm: {
-      const std::unique_ptr<Algorithm> algorithm = MakeAlgorithm(params.algorithm);
-      return Minimize(problem, *algorithm, stop, rng);
+      // One island run to the end: the same draws as Minimize with this generator.
+      std::vector<Island> island;
+      island.emplace_back(params.algorithm, stop, rng);
+      step(island, true, std::numeric_limits<std::size_t>::max());
+      return BestOf(island.front());
     }
     case OptimizerKind::kIsland: {
-      Archipelago archipelago(IslandModelOf(params), stop, rng.NextU64());
-      archipelago.Run(problem);
+      Archipelago archipelago = runtime.resume
+                                    ? Archipelago::FromCheckpoint(*runtime.resume)
+                                    : Archipelago(IslandModelOf(params), stop, rng.NextU64());
+      if (!runtime.resume) archipelago.Start(step);
+      while (!archipelago.RunEpoch(step)) {
+        if (runtime.on_epoch) runtime.on_epoch(archipelago.Checkpoint());
+      }
       return archipelago.Best();
     }
     case OptimizerKind::kExhaustive:
+      if (runtime.evaluate) {
+        return RunExhaustiveSearch(
+            problem, steps,
+            [&](const Eigen::Ref<const Eigen::MatrixXd>& candidates, std::span<double> fitness) {
+              runtime.evaluate(problem, candidates, fitness);
+            });
+      }
       return RunExhaustiveSearch(problem, steps);
   }
   throw Error("unknown optimizer");
@@ -94,25 +127,38 @@ OptimResult Optimize(const Problem& problem, const EstimatorParams& params,
 
 }  // namespace
 
-PoseEstimate EstimatePose(const RangeRenderer& renderer, const LaserScan& scan, const Pose2& center,
-                          const EstimatorParams& params, float max_range, Rng& rng) {
+std::unique_ptr<Problem> MakeScanProblem(const RangeRenderer& renderer, const LaserScan& scan,
+                                         const Pose2& center, const EstimatorParams& params,
+                                         float max_range) {
   ObservedBeams observed = PrepareObservation(scan, max_range);
+  if (params.estimator == EstimatorKind::k2D) {
+    return std::make_unique<ShiftedScanProblem>(
+        renderer, params.fitness,
+        MakeShiftLayout(scan, params.heading_half_window, params.heading_step), std::move(observed),
+        max_range, center, params.window);
+  }
+  return std::make_unique<PoseScanProblem>(renderer, params.fitness, scan, std::move(observed),
+                                           max_range, center, params.window,
+                                           params.heading_half_window);
+}
+
+PoseEstimate EstimatePose(const RangeRenderer& renderer, const LaserScan& scan, const Pose2& center,
+                          const EstimatorParams& params, float max_range, Rng& rng,
+                          const SearchRuntime& runtime) {
+  const std::unique_ptr<Problem> problem =
+      MakeScanProblem(renderer, scan, center, params, max_range);
   PoseEstimate estimate;
   if (params.estimator == EstimatorKind::k2D) {
-    const ShiftLayout layout =
-        MakeShiftLayout(scan, params.heading_half_window, params.heading_step);
-    const ShiftedScanProblem problem(renderer, params.fitness, layout, std::move(observed),
-                                     max_range, center, params.window);
     const OptimResult r =
-        Optimize(problem, params, Eigen::Vector2d::Constant(params.exhaustive_step), rng);
-    estimate.pose = problem.PoseAt(r.best.head<2>(), &estimate.fitness);
+        Optimize(*problem, params, Eigen::Vector2d::Constant(params.exhaustive_step), rng, runtime);
+    estimate.pose = static_cast<const ShiftedScanProblem&>(*problem).PoseAt(r.best.head<2>(),
+                                                                            &estimate.fitness);
     estimate.evaluations = r.evaluations;
   } else {
-    const PoseScanProblem problem(renderer, params.fitness, scan, std::move(observed), max_range,
-                                  center, params.window, params.heading_half_window);
     const OptimResult r = Optimize(
-        problem, params,
-        Eigen::Vector3d(params.exhaustive_step, params.exhaustive_step, params.heading_step), rng);
+        *problem, params,
+        Eigen::Vector3d(params.exhaustive_step, params.exhaustive_step, params.heading_step), rng,
+        runtime);
     estimate.pose = Pose2(r.best(0), r.best(1), r.best(2));
     estimate.fitness = r.best_fitness;
     estimate.evaluations = r.evaluations;

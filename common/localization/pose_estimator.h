@@ -2,6 +2,10 @@
 #define EVOSLAM_COMMON_LOCALIZATION_POSE_ESTIMATOR_H_
 
 #include <cstddef>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -55,10 +59,36 @@ struct PoseEstimate {
   std::size_t evaluations = 0;
 };
 
+// Evaluates a batch of candidates (one per column) of `problem`, writing one fitness each.
+using BatchEvaluator =
+    std::function<void(const Problem& problem, const Eigen::Ref<const Eigen::MatrixXd>& candidates,
+                       std::span<double> fitness)>;
+// Starts and evolves islands of `problem`, as IslandStepper does.
+using ProblemIslandStepper = std::function<void(
+    const Problem& problem, std::vector<Island>& islands, bool start, std::size_t generations)>;
+
+// Where and how one search runs. Empty functions run it here, on local threads; the service
+// supplies functions that send the work to its workers, which rebuild the same problem.
+struct SearchRuntime {
+  ProblemIslandStepper step;
+  BatchEvaluator evaluate;
+  // Called after every epoch of an island search with its state.
+  std::function<void(const ArchipelagoCheckpoint&)> on_epoch;
+  // An island search interrupted part-way, to continue instead of starting afresh.
+  std::optional<ArchipelagoCheckpoint> resume;
+};
+
+// The problem EstimatePose solves: a ShiftedScanProblem (2D) or a PoseScanProblem (3D) over
+// the window around `center`. It keeps a reference to `renderer`.
+std::unique_ptr<Problem> MakeScanProblem(const RangeRenderer& renderer, const LaserScan& scan,
+                                         const Pose2& center, const EstimatorParams& params,
+                                         float max_range);
+
 // Finds the pose in the window around `center` whose simulated scan best matches `scan`.
 // `max_range` is the range the simulation stops at; observed readings at or beyond it are ignored.
 PoseEstimate EstimatePose(const RangeRenderer& renderer, const LaserScan& scan, const Pose2& center,
-                          const EstimatorParams& params, float max_range, Rng& rng);
+                          const EstimatorParams& params, float max_range, Rng& rng,
+                          const SearchRuntime& runtime = {});
 
 // The island model `--optimizer island` runs: islands of params.algorithm.
 IslandModelParams IslandModelOf(const EstimatorParams& params);

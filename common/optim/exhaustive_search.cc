@@ -11,6 +11,15 @@
 namespace evoslam {
 
 OptimResult RunExhaustiveSearch(const Problem& problem, const Eigen::VectorXd& steps) {
+  return RunExhaustiveSearch(
+      problem, steps,
+      [&problem](const Eigen::Ref<const Eigen::MatrixXd>& candidates, std::span<double> fitness) {
+        problem.Evaluate(candidates, fitness);
+      });
+}
+
+OptimResult RunExhaustiveSearch(const Problem& problem, const Eigen::VectorXd& steps,
+                                const LatticeEvaluator& evaluate) {
   const Eigen::VectorXd& lo = problem.lower();
   const Eigen::VectorXd& hi = problem.upper();
   const Eigen::Index dim = lo.size();
@@ -47,8 +56,8 @@ OptimResult RunExhaustiveSearch(const Problem& problem, const Eigen::VectorXd& s
     const std::size_t count = std::min(kBatch, total - first);
     for (std::size_t k = 0; k < count; ++k)
       point(first + k, batch.col(static_cast<Eigen::Index>(k)));
-    problem.Evaluate(batch.leftCols(static_cast<Eigen::Index>(count)),
-                     std::span<double>(fitness.data(), count));
+    evaluate(batch.leftCols(static_cast<Eigen::Index>(count)),
+             std::span<double>(fitness.data(), count));
     for (std::size_t k = 0; k < count; ++k) {
       if (fitness[k] < result.best_fitness) {
         result.best_fitness = fitness[k];

@@ -78,4 +78,19 @@ std::string ReadCurveKey(const std::filesystem::path& path) {
   return key;
 }
 
+std::set<std::string> ReadPublicKeys(const std::vector<std::filesystem::path>& paths) {
+  std::set<std::string> keys;
+  for (const auto& path : paths) {
+    if (std::filesystem::is_directory(path)) {
+      for (const auto& entry : std::filesystem::directory_iterator(path)) {
+        if (entry.path().extension() == ".pub") keys.insert(ReadCurveKey(entry.path()));
+      }
+    } else {
+      keys.insert(ReadCurveKey(path));
+    }
+  }
+  if (keys.empty()) throw Error("no public key found in the key files given");
+  return keys;
+}
+
 }  // namespace evoslam

@@ -2,7 +2,9 @@
 #define EVOSLAM_COMMON_PROTOCOL_CURVE_KEYS_H_
 
 #include <filesystem>
+#include <set>
 #include <string>
+#include <vector>
 
 namespace evoslam {
 
@@ -24,6 +26,9 @@ void WriteCurveKeyPair(const CurveKeyPair& keys, const std::filesystem::path& di
                        const std::string& name, bool overwrite);
 // Reads one key file (a .pub or a .key): one Z85 key, optionally followed by a newline.
 std::string ReadCurveKey(const std::filesystem::path& path);
+// The public keys in a list of .pub files and folders (every *.pub file in a folder); throws
+// Error naming the file when one is not a key, or when the list yields no key at all.
+std::set<std::string> ReadPublicKeys(const std::vector<std::filesystem::path>& paths);
 
 }  // namespace evoslam
 

@@ -1,0 +1,80 @@
+#include "cli/job_client.h"
+
+#include <fstream>
+#include <iterator>
+#include <memory>
+
+#include "common/service/dataset_files.h"
+#include "common/util/error.h"
+#include "common/util/progress_bar.h"
+
+namespace evoslam::cli {
+
+void UploadMap(ServiceClient& client, const std::filesystem::path& map, proto::JobSpec& spec) {
+  if (map.extension() != ".yaml" && map.extension() != ".yml") {
+    *spec.mutable_map() = client.Upload(map);
+    return;
+  }
+  std::ifstream in(map, std::ios::binary);
+  if (!in) throw InputError(map.string(), 0, "cannot open");
+  const std::string yaml((std::istreambuf_iterator<char>(in)), {});
+  const auto image = MapYamlImage(yaml);
+  if (!image || image->empty()) throw InputError(map.string(), 0, "no 'image:' key");
+  std::filesystem::path image_path(*image);
+  if (image_path.is_relative()) image_path = map.parent_path() / image_path;
+  const proto::DatasetRef image_ref = client.Upload(image_path);
+  *spec.mutable_map_image() = image_ref;
+  *spec.mutable_map() = client.UploadBytes(map.filename().string(),
+                                           WithMapYamlImage(yaml, SafeFileName(image_ref.name())));
+}
+
+std::vector<proto::ResultFile> FollowToResult(ServiceClient& client, const std::string& job_id) {
+  std::unique_ptr<ProgressBar> bar;
+  std::string phase;
+  const proto::JobStatus final_status = client.Watch(job_id, [&](const proto::ProgressEvent& e) {
+    const proto::JobStatus& s = e.status();
+    if (s.total() == 0) return;
+    if (!bar || s.phase() != phase) {
+      bar.reset();
+      phase = s.phase();
+      bar = std::make_unique<ProgressBar>(phase, s.total());
+    }
+    bar->Update(s.done());
+  });
+  bar.reset();
+  if (final_status.state() == proto::JOB_STATE_FAILED) {
+    throw Error(job_id + " failed: " + final_status.error());
+  }
+  if (final_status.state() == proto::JOB_STATE_CANCELLED) throw Error(job_id + " was cancelled");
+  return client.Result(job_id);
+}
+
+void WriteResultFiles(const std::vector<proto::ResultFile>& files,
+                      const std::filesystem::path& dir) {
+  std::filesystem::create_directories(dir);
+  for (const proto::ResultFile& f : files) {
+    const std::filesystem::path path = dir / SafeFileName(f.name());
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(f.content().data(), static_cast<std::streamsize>(f.content().size()));
+    if (!out) throw Error("cannot write " + path.string());
+  }
+}
+
+std::string_view JobStateName(proto::JobState state) {
+  switch (state) {
+    case proto::JOB_STATE_QUEUED:
+      return "queued";
+    case proto::JOB_STATE_RUNNING:
+      return "running";
+    case proto::JOB_STATE_SUCCEEDED:
+      return "succeeded";
+    case proto::JOB_STATE_FAILED:
+      return "failed";
+    case proto::JOB_STATE_CANCELLED:
+      return "cancelled";
+    default:
+      return "unknown";
+  }
+}
+
+}  // namespace evoslam::cli

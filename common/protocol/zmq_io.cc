@@ -1,0 +1,64 @@
+#include "common/protocol/zmq_io.h"
+
+#include "common/protocol/curve_keys.h"
+
+namespace evoslam {
+
+std::optional<Frames> ReceiveFrames(zmq::socket_t& socket) {
+  Frames frames;
+  zmq::message_t frame;
+  if (!socket.recv(frame, zmq::recv_flags::dontwait)) return std::nullopt;
+  frames.push_back(std::move(frame));
+  while (frames.back().more()) {
+    zmq::message_t next;
+    // The rest of a multipart message is delivered with its first part.
+    if (!socket.recv(next, zmq::recv_flags::none)) break;
+    frames.push_back(std::move(next));
+  }
+  return frames;
+}
+
+std::span<const std::byte> Bytes(const zmq::message_t& frame) {
+  return {static_cast<const std::byte*>(frame.data()), frame.size()};
+}
+
+std::string Text(const zmq::message_t& frame) {
+  return std::string(static_cast<const char*>(frame.data()), frame.size());
+}
+
+bool SendTo(zmq::socket_t& router, std::string_view identity, std::string_view payload) {
+  try {
+    if (!router.send(zmq::buffer(identity), zmq::send_flags::sndmore | zmq::send_flags::dontwait))
+      return false;
+    return router.send(zmq::buffer(payload), zmq::send_flags::dontwait).has_value();
+  } catch (const zmq::error_t&) {
+    return false;  // EHOSTUNREACH with ROUTER_MANDATORY: the peer has gone
+  }
+}
+
+void Send(zmq::socket_t& dealer, std::string_view payload) {
+  dealer.send(zmq::buffer(payload), zmq::send_flags::none);
+}
+
+void MakeCurveServer(zmq::socket_t& socket, const CurveServerKeys& keys, std::string_view domain) {
+  socket.set(zmq::sockopt::curve_server, 1);
+  socket.set(zmq::sockopt::curve_secretkey, keys.secret_key);
+  socket.set(zmq::sockopt::zap_domain, std::string(domain));
+}
+
+void MakeCurveClient(zmq::socket_t& socket, const CurveClientKeys& keys) {
+  socket.set(zmq::sockopt::curve_serverkey, keys.server_public_key);
+  socket.set(zmq::sockopt::curve_publickey, keys.public_key);
+  socket.set(zmq::sockopt::curve_secretkey, keys.secret_key);
+}
+
+CurveClientKeys LoadCurveClientKeys(const std::string& server_public_file,
+                                    const std::string& secret_file) {
+  CurveClientKeys keys;
+  keys.server_public_key = ReadCurveKey(server_public_file);
+  keys.secret_key = ReadCurveKey(secret_file);
+  keys.public_key = CurvePublicKey(keys.secret_key);
+  return keys;
+}
+
+}  // namespace evoslam

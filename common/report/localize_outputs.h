@@ -1,0 +1,35 @@
+#ifndef EVOSLAM_COMMON_REPORT_LOCALIZE_OUTPUTS_H_
+#define EVOSLAM_COMMON_REPORT_LOCALIZE_OUTPUTS_H_
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/io/relations.h"
+#include "common/localization/localizer.h"
+#include "common/localization/map_model.h"
+#include "common/sensor/dataset.h"
+#include "evoslam/localize.pb.h"
+#include "evoslam/service.pb.h"
+
+namespace evoslam {
+
+struct NamedRelations {
+  std::string source;  // the file they came from, for the report
+  std::vector<Relation> relations;
+};
+
+// Everything a localization job hands back, as named files: trajectory.txt and trajectory.tum,
+// report.json, summary.txt, map.png (the map with the estimate, and ground truth when the log
+// has it), and map.yaml + map.pgm when the map was built from a log. The coordinator makes them
+// once, so a job gives the same files wherever it ran.
+std::vector<proto::ResultFile> LocalizeOutputs(const MapModel& map, const Dataset& dataset,
+                                               const proto::LocalizeParams& params,
+                                               const LocalizeResult& result,
+                                               const std::optional<NamedRelations>& relations,
+                                               std::uint32_t threads);
+
+}  // namespace evoslam
+
+#endif  // EVOSLAM_COMMON_REPORT_LOCALIZE_OUTPUTS_H_

@@ -1,0 +1,203 @@
+#include "common/service/service_client.h"
+
+#include <chrono>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <utility>
+
+#include "common/util/error.h"
+#include "common/util/sha256.h"
+
+namespace evoslam {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::string ReadFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string(), 0, "cannot open");
+  std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  if (in.bad()) throw InputError(path.string(), 0, "cannot read");
+  return bytes;
+}
+
+std::string Trim(const std::string& s) {
+  const auto first = s.find_first_not_of(" \t\r\"'");
+  if (first == std::string::npos) return {};
+  const auto last = s.find_last_not_of(" \t\r\"'");
+  return s.substr(first, last - first + 1);
+}
+
+}  // namespace
+
+std::optional<std::string> MapYamlImage(const std::string& yaml) {
+  std::istringstream in(yaml);
+  std::string line;
+  while (std::getline(in, line)) {
+    const std::string t = Trim(line);
+    if (t.rfind("image:", 0) == 0) return Trim(t.substr(6));
+  }
+  return std::nullopt;
+}
+
+std::string WithMapYamlImage(const std::string& yaml, const std::string& image) {
+  std::istringstream in(yaml);
+  std::string line, out;
+  while (std::getline(in, line)) {
+    out += Trim(line).rfind("image:", 0) == 0 ? "image: " + image : line;
+    out += '\n';
+  }
+  return out;
+}
+
+ServiceClient::ServiceClient(zmq::context_t& context, ClientOptions options)
+    : options_(std::move(options)), socket_(context, zmq::socket_type::dealer) {
+  socket_.set(zmq::sockopt::linger, 0);
+  if (options_.curve) MakeCurveClient(socket_, *options_.curve);
+  socket_.connect(options_.endpoint);
+}
+
+std::uint64_t ServiceClient::Send(proto::ClientRequest request) {
+  const std::uint64_t id = next_request_++;
+  request.set_request_id(id);
+  evoslam::Send(socket_, Encode(std::move(request)));
+  return id;
+}
+
+std::optional<proto::ClientReply> ServiceClient::Receive(std::uint64_t request_id,
+                                                         double timeout_seconds) {
+  const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                        std::chrono::duration<double>(timeout_seconds));
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - Clock::now());
+    if (left.count() <= 0) return std::nullopt;
+    std::vector<zmq::pollitem_t> items = {{socket_.handle(), 0, ZMQ_POLLIN, 0}};
+    zmq::poll(items, left);
+    while (auto frames = ReceiveFrames(socket_)) {
+      if (frames->size() != 1) continue;
+      proto::ClientReply reply = DecodeClientReply(Bytes(frames->front()));
+      // Replies to requests given up on, and requests refused before they could be read
+      // (id 0), are told apart by their ids.
+      if (reply.request_id() == request_id) return reply;
+      if (reply.request_id() == 0 && reply.has_error()) {
+        throw ProtocolError(reply.error().code(), "coordinator: " + reply.error().message());
+      }
+    }
+  }
+}
+
+proto::ClientReply ServiceClient::Call(proto::ClientRequest request) {
+  const std::uint64_t id = Send(std::move(request));
+  auto reply = Receive(id, options_.timeout_seconds);
+  if (!reply) {
+    throw Error("no answer from the coordinator at " + options_.endpoint + " within " +
+                std::to_string(static_cast<int>(options_.timeout_seconds)) +
+                " s (is it running? with CURVE on, are its key and this client's key right?)");
+  }
+  if (reply->has_error()) {
+    throw ProtocolError(reply->error().code(), "coordinator: " + reply->error().message());
+  }
+  return std::move(*reply);
+}
+
+proto::DatasetRef ServiceClient::UploadBytes(const std::string& name, const std::string& content) {
+  const std::string sha = Sha256Hex(content);
+  // Ask first with the hash alone: a dataset is sent once, however many jobs use it.
+  proto::ClientRequest ask;
+  ask.mutable_upload()->set_name(name);
+  ask.mutable_upload()->set_sha256(sha);
+  bool present = false;
+  if (!content.empty()) {
+    try {
+      present = Call(ask).stored().already_present();
+    } catch (const ProtocolError& e) {
+      if (e.code() != proto::ERROR_CODE_UNKNOWN_DATASET) throw;
+    }
+  }
+  if (!present) {
+    proto::ClientRequest upload;
+    upload.mutable_upload()->set_name(name);
+    upload.mutable_upload()->set_sha256(sha);
+    upload.mutable_upload()->set_content(content);
+    Call(std::move(upload));
+  }
+  proto::DatasetRef ref;
+  ref.set_sha256(sha);
+  ref.set_size_bytes(content.size());
+  ref.set_name(name);
+  return ref;
+}
+
+proto::DatasetRef ServiceClient::Upload(const std::filesystem::path& file) {
+  return UploadBytes(file.filename().string(), ReadFile(file));
+}
+
+std::string ServiceClient::Submit(const proto::JobSpec& spec) {
+  proto::ClientRequest r;
+  *r.mutable_submit()->mutable_spec() = spec;
+  return Call(std::move(r)).accepted().job_id();
+}
+
+proto::JobStatus ServiceClient::Status(const std::string& job_id) {
+  proto::ClientRequest r;
+  r.mutable_status()->set_job_id(job_id);
+  return Call(std::move(r)).status();
+}
+
+std::vector<proto::JobStatus> ServiceClient::Jobs() {
+  proto::ClientRequest r;
+  r.mutable_jobs();
+  const auto reply = Call(std::move(r));
+  return {reply.jobs().jobs().begin(), reply.jobs().jobs().end()};
+}
+
+proto::JobStatus ServiceClient::Watch(
+    const std::string& job_id, const std::function<void(const proto::ProgressEvent&)>& on_event) {
+  const auto finished = [](const proto::JobStatus& s) {
+    return s.state() == proto::JOB_STATE_SUCCEEDED || s.state() == proto::JOB_STATE_FAILED ||
+           s.state() == proto::JOB_STATE_CANCELLED;
+  };
+  for (;;) {
+    proto::ClientRequest r;
+    r.mutable_watch()->set_job_id(job_id);
+    const std::uint64_t id = Send(r);
+    auto reply = Receive(id, options_.timeout_seconds);
+    if (!reply) {
+      throw Error("no answer from the coordinator at " + options_.endpoint + " within " +
+                  std::to_string(static_cast<int>(options_.timeout_seconds)) + " s");
+    }
+    // Events keep coming under the watch's id; a silence means a long step, or a coordinator
+    // that restarted and forgot its watchers: the watch is then asked for again.
+    while (reply) {
+      if (reply->has_error()) {
+        throw ProtocolError(reply->error().code(), "coordinator: " + reply->error().message());
+      }
+      if (on_event) on_event(reply->event());
+      if (finished(reply->event().status())) return reply->event().status();
+      reply = Receive(id, options_.timeout_seconds);
+    }
+  }
+}
+
+std::vector<proto::ResultFile> ServiceClient::Result(const std::string& job_id) {
+  proto::ClientRequest r;
+  r.mutable_result()->set_job_id(job_id);
+  const auto reply = Call(std::move(r));
+  return {reply.result().files().begin(), reply.result().files().end()};
+}
+
+proto::JobStatus ServiceClient::Cancel(const std::string& job_id) {
+  proto::ClientRequest r;
+  r.mutable_cancel()->set_job_id(job_id);
+  return Call(std::move(r)).status();
+}
+
+std::vector<proto::WorkerInfo> ServiceClient::Workers() {
+  proto::ClientRequest r;
+  r.mutable_workers();
+  const auto reply = Call(std::move(r));
+  return {reply.workers().workers().begin(), reply.workers().workers().end()};
+}
+
+}  // namespace evoslam

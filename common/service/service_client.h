@@ -1,0 +1,66 @@
+#ifndef EVOSLAM_COMMON_SERVICE_SERVICE_CLIENT_H_
+#define EVOSLAM_COMMON_SERVICE_SERVICE_CLIENT_H_
+
+#include <zmq.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/protocol/wire.h"
+#include "common/protocol/zmq_io.h"
+#include "evoslam/service.pb.h"
+
+namespace evoslam {
+
+struct ClientOptions {
+  std::string endpoint = "tcp://127.0.0.1:5555";
+  std::optional<CurveClientKeys> curve;
+  double timeout_seconds = 30.0;  // for one reply
+};
+
+// A client of the coordinator's socket API (a DEALER socket). Every call waits for its reply;
+// an error reply is thrown as ProtocolError with the coordinator's code and message, and no
+// reply within the timeout as Error saying what was waited for.
+class ServiceClient {
+ public:
+  ServiceClient(zmq::context_t& context, ClientOptions options);
+
+  // Uploads a file unless the coordinator already has its bytes, and returns its reference.
+  proto::DatasetRef Upload(const std::filesystem::path& file);
+  proto::DatasetRef UploadBytes(const std::string& name, const std::string& content);
+  std::string Submit(const proto::JobSpec& spec);
+  proto::JobStatus Status(const std::string& job_id);
+  std::vector<proto::JobStatus> Jobs();
+  // Follows a job until it ends, calling `on_event` for every progress event; returns its final
+  // status. Survives a coordinator restart: when events stop it asks again.
+  proto::JobStatus Watch(const std::string& job_id,
+                         const std::function<void(const proto::ProgressEvent&)>& on_event);
+  std::vector<proto::ResultFile> Result(const std::string& job_id);
+  proto::JobStatus Cancel(const std::string& job_id);
+  std::vector<proto::WorkerInfo> Workers();
+
+  // One request and its reply (or the first reply, for a watch).
+  proto::ClientReply Call(proto::ClientRequest request);
+
+ private:
+  std::uint64_t Send(proto::ClientRequest request);
+  // The next reply to `request_id`, waiting at most `timeout_seconds`; nullopt on timeout.
+  std::optional<proto::ClientReply> Receive(std::uint64_t request_id, double timeout_seconds);
+
+  ClientOptions options_;
+  zmq::socket_t socket_;
+  std::uint64_t next_request_ = 1;
+};
+
+// The map_server YAML's image path, as written in the file; nullopt when there is none.
+std::optional<std::string> MapYamlImage(const std::string& yaml);
+// The YAML with its image path replaced by `image`.
+std::string WithMapYamlImage(const std::string& yaml, const std::string& image);
+
+}  // namespace evoslam
+
+#endif  // EVOSLAM_COMMON_SERVICE_SERVICE_CLIENT_H_

@@ -1,0 +1,35 @@
+#ifndef EVOSLAM_COMMON_UTIL_PROGRAM_OPTIONS_H_
+#define EVOSLAM_COMMON_UTIL_PROGRAM_OPTIONS_H_
+
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+
+namespace evoslam {
+
+// What the service programs (evoslam-coordinator, evoslam-worker) share on their command line:
+// --log-level, and the exit status of a bad command line (2, as for `evoslam`).
+inline void AddLogLevelOption(CLI::App& app, std::string& level) {
+  app.add_option("--log-level", level, "trace, debug, info, warn, error")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
+}
+
+// Parses the command line and sets the log level. Returns the status to exit with at once
+// (0 after --help, 2 for a bad command line), or nullopt to go on.
+inline std::optional<int> ParseProgramOptions(CLI::App& app, int argc, char** argv,
+                                              const std::string& level) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  spdlog::set_level(spdlog::level::from_str(level));
+  return std::nullopt;
+}
+
+}  // namespace evoslam
+
+#endif  // EVOSLAM_COMMON_UTIL_PROGRAM_OPTIONS_H_

@@ -1,0 +1,706 @@
+#include "coordinator/coordinator.h"
+
+#include <spdlog/spdlog.h>
+#include <sys/eventfd.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "common/localization/localize_params.h"
+#include "common/protocol/wire.h"
+#include "common/protocol/zmq_io.h"
+#include "common/service/dataset_files.h"
+#include "common/util/error.h"
+#include "common/util/sha256.h"
+#include "common/util/temp_dir.h"
+#include "coordinator/job_store.h"
+#include "coordinator/localize_job.h"
+#include "coordinator/task_board.h"
+#include "coordinator/worker_table.h"
+#include "coordinator/zap_handler.h"
+
+namespace evoslam {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double UnixNow() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+Clock::duration Seconds(double s) {
+  return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
+}
+
+bool Finished(proto::JobState state) {
+  return state == proto::JOB_STATE_SUCCEEDED || state == proto::JOB_STATE_FAILED ||
+         state == proto::JOB_STATE_CANCELLED;
+}
+
+// The printable start of a socket identity, for logs.
+std::string Peer(const std::string& identity) {
+  std::string hex;
+  for (unsigned char c : identity.substr(0, 8)) {
+    constexpr const char* kDigits = "0123456789abcdef";
+    hex += kDigits[c >> 4];
+    hex += kDigits[c & 15];
+  }
+  return hex;
+}
+
+// An eventfd the job threads write to so that the broker's poll wakes up.
+class Waker {
+ public:
+  Waker() : fd_(::eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC)) {
+    if (fd_ < 0) throw Error("cannot create an eventfd");
+  }
+  ~Waker() { ::close(fd_); }
+  Waker(const Waker&) = delete;
+  Waker& operator=(const Waker&) = delete;
+  void Wake() const {
+    const std::uint64_t one = 1;
+    [[maybe_unused]] const auto n = ::write(fd_, &one, sizeof one);
+  }
+  void Drain() const {
+    std::uint64_t count = 0;
+    [[maybe_unused]] const auto n = ::read(fd_, &count, sizeof count);
+  }
+  int fd() const { return fd_; }
+
+ private:
+  int fd_;
+};
+
+proto::DatasetRef Ref(const std::string& sha256) {
+  proto::DatasetRef ref;
+  ref.set_sha256(sha256);
+  return ref;
+}
+
+struct Watcher {
+  std::string identity;
+  std::uint64_t request_id = 0;
+};
+
+}  // namespace
+
+class Coordinator::Impl {
+ public:
+  Impl(zmq::context_t& context, CoordinatorOptions options);
+  ~Impl();
+  void Run(const std::stop_token& stop);
+
+  std::string clients_endpoint() const { return clients_.get(zmq::sockopt::last_endpoint); }
+  std::string workers_endpoint() const { return workers_.get(zmq::sockopt::last_endpoint); }
+
+ private:
+  // Broker thread.
+  void OnClientFrames();
+  void OnWorkerFrames();
+  proto::ClientReply Handle(const std::string& identity, const proto::ClientRequest& request);
+  proto::ClientReply Upload(const proto::UploadDataset& upload);
+  proto::ClientReply Submit(proto::JobSpec spec);
+  proto::ClientReply Watch(const std::string& identity, const proto::ClientRequest& request);
+  proto::ClientReply Result(const std::string& job_id);
+  proto::ClientReply Cancel(const std::string& job_id);
+  void HandleWorker(const std::string& identity, const proto::WorkerMessage& message);
+  void SendToWorker(const std::string& identity, const proto::CoordinatorMessage& message);
+  void Dispatch();
+  void CheckWorkers(Clock::time_point now);
+  void FlushEvents();
+  proto::JobStatus StatusOf(const std::string& job_id);
+
+  // Job threads.
+  void JobLoop(const std::stop_token& stop);
+  void RunJob(const std::string& job_id);
+  void Touch(const std::string& job_id);
+  void Schedule(const std::string& job_id);
+
+  CoordinatorOptions options_;
+  spdlog::level::level_enum notice_;
+  WireLimits limits_;
+  Waker waker_;
+  std::optional<ZapHandler> zap_;  // bound before the CURVE sockets, as ZeroMQ requires
+  zmq::socket_t clients_;
+  zmq::socket_t workers_;
+
+  std::mutex store_mutex_;  // guards store_ and files_
+  JobStore store_;
+  TempDir files_dir_;
+  DatasetFiles files_;
+
+  TaskBoard board_;
+  WorkerTable table_;                             // broker thread only
+  std::atomic<std::uint32_t> worker_threads_{0};  // of the workers now known, for reports
+  std::multimap<std::string, Watcher> watchers_;  // broker thread only
+  Clock::time_point next_heartbeat_;
+
+  std::mutex jobs_mutex_;
+  std::condition_variable jobs_cv_;
+  std::deque<std::string> runnable_;
+  std::set<std::string> touched_;          // jobs whose status changed since the last flush
+  std::vector<std::jthread> job_threads_;  // last: they stop before what they use goes
+};
+
+Coordinator::Impl::Impl(zmq::context_t& context, CoordinatorOptions options)
+    : options_(std::move(options)),
+      notice_(options_.quiet ? spdlog::level::debug : spdlog::level::info),
+      clients_(context, zmq::socket_type::router),
+      workers_(context, zmq::socket_type::router),
+      store_(options_.db),
+      files_dir_("evoslam-coordinator"),
+      files_(files_dir_.path()),
+      board_([this] { waker_.Wake(); }) {
+  limits_.max_frame_bytes = options_.max_message_bytes;
+  if (!options_.curve_secret_key.empty()) {
+    zap_.emplace(context,
+                 std::map<std::string, std::set<std::string>>{{"clients", options_.client_keys},
+                                                              {"workers", options_.worker_keys}});
+    MakeCurveServer(clients_, {options_.curve_secret_key}, "clients");
+    MakeCurveServer(workers_, {options_.curve_secret_key}, "workers");
+  }
+  for (zmq::socket_t* s : {&clients_, &workers_}) {
+    s->set(zmq::sockopt::linger, 0);
+    s->set(zmq::sockopt::router_mandatory, 1);
+    // Frames a little over the limit still arrive, to be answered with TOO_LARGE; far over it,
+    // ZeroMQ drops the connection before the memory is spent.
+    s->set(zmq::sockopt::maxmsgsize,
+           static_cast<std::int64_t>(options_.max_message_bytes + (std::size_t{1} << 20)));
+  }
+  const auto bind = [](zmq::socket_t& socket, const std::string& endpoint, const char* what) {
+    try {
+      socket.bind(endpoint);
+    } catch (const zmq::error_t& e) {
+      throw Error("cannot listen for " + std::string(what) + " on " + endpoint + ": " + e.what());
+    }
+  };
+  bind(clients_, options_.clients_endpoint, "clients");
+  bind(workers_, options_.workers_endpoint, "workers");
+
+  for (const std::string& id : store_.Unfinished()) runnable_.push_back(id);
+  if (!runnable_.empty()) spdlog::log(notice_, "resuming {} unfinished jobs", runnable_.size());
+  for (std::size_t i = 0; i < std::max<std::size_t>(1, options_.max_running_jobs); ++i)
+    job_threads_.emplace_back([this](std::stop_token stop) { JobLoop(stop); });
+}
+
+Coordinator::Impl::~Impl() {
+  board_.Shutdown();
+  for (auto& t : job_threads_) t.request_stop();
+  jobs_cv_.notify_all();
+  job_threads_.clear();
+}
+
+void Coordinator::Impl::Run(const std::stop_token& stop) {
+  spdlog::log(notice_, "coordinator: clients on {}, workers on {}{}", clients_endpoint(),
+              workers_endpoint(), zap_ ? ", CURVE on" : "");
+  next_heartbeat_ = Clock::now();
+  while (!stop.stop_requested()) {
+    std::vector<zmq::pollitem_t> items = {
+        {clients_.handle(), 0, ZMQ_POLLIN, 0},
+        {workers_.handle(), 0, ZMQ_POLLIN, 0},
+        {nullptr, waker_.fd(), ZMQ_POLLIN, 0},
+    };
+    if (zap_) items.push_back({zap_->socket().handle(), 0, ZMQ_POLLIN, 0});
+    zmq::poll(items, std::chrono::milliseconds(100));
+    if (items[2].revents & ZMQ_POLLIN) waker_.Drain();
+    if (zap_ && (items[3].revents & ZMQ_POLLIN)) zap_->HandleOne();
+    if (items[0].revents & ZMQ_POLLIN) OnClientFrames();
+    if (items[1].revents & ZMQ_POLLIN) OnWorkerFrames();
+    const Clock::time_point now = Clock::now();
+    CheckWorkers(now);
+    if (now >= next_heartbeat_) {
+      proto::CoordinatorMessage beat;
+      beat.mutable_heartbeat();
+      for (const std::string& id : table_.Identities()) SendToWorker(id, beat);
+      next_heartbeat_ = now + Seconds(options_.heartbeat_seconds);
+    }
+    Dispatch();
+    FlushEvents();
+    worker_threads_ = table_.threads();
+  }
+  spdlog::log(notice_, "coordinator: stopping; running jobs resume at the next start");
+}
+
+// ---- Clients ----
+
+void Coordinator::Impl::OnClientFrames() {
+  // A bounded batch per wake-up, so a flood of clients cannot starve the workers.
+  for (int batch = 0; batch < 256; ++batch) {
+    auto frames = ReceiveFrames(clients_);
+    if (!frames) return;
+    if (frames->empty()) continue;
+    const std::string identity = Text(frames->front());
+    proto::ClientReply reply;
+    if (frames->size() != 2) {
+      spdlog::warn("client {}: refused a message of {} frames", Peer(identity), frames->size());
+      reply = ErrorReplyFor(
+          0, proto::ERROR_CODE_MALFORMED,
+          "a request is exactly one frame, got " + std::to_string(frames->size() - 1));
+    } else {
+      try {
+        const proto::ClientRequest request = DecodeClientRequest(Bytes((*frames)[1]), limits_);
+        reply = Handle(identity, request);
+      } catch (const ProtocolError& e) {
+        spdlog::warn("client {}: refused: {}", Peer(identity), e.what());
+        reply = ErrorReplyFor(0, e.code(), e.what());
+      }
+    }
+    SendTo(clients_, identity, Encode(reply));
+  }
+}
+
+proto::ClientReply Coordinator::Impl::Handle(const std::string& identity,
+                                             const proto::ClientRequest& request) {
+  proto::ClientReply reply;
+  try {
+    switch (request.request_case()) {
+      case proto::ClientRequest::kUpload:
+        reply = Upload(request.upload());
+        break;
+      case proto::ClientRequest::kSubmit:
+        reply = Submit(request.submit().spec());
+        break;
+      case proto::ClientRequest::kStatus:
+        *reply.mutable_status() = StatusOf(request.status().job_id());
+        break;
+      case proto::ClientRequest::kJobs: {
+        std::lock_guard lock(store_mutex_);
+        for (auto& s : store_.Jobs()) *reply.mutable_jobs()->add_jobs() = std::move(s);
+        break;
+      }
+      case proto::ClientRequest::kWatch:
+        reply = Watch(identity, request);
+        break;
+      case proto::ClientRequest::kResult:
+        reply = Result(request.result().job_id());
+        break;
+      case proto::ClientRequest::kCancel:
+        reply = Cancel(request.cancel().job_id());
+        break;
+      case proto::ClientRequest::kWorkers:
+        for (auto& w : table_.List(Clock::now(), UnixNow()))
+          *reply.mutable_workers()->add_workers() = std::move(w);
+        break;
+      case proto::ClientRequest::REQUEST_NOT_SET:
+        throw ProtocolError(proto::ERROR_CODE_MALFORMED, "empty request");
+    }
+  } catch (const ProtocolError& e) {
+    // Asking for a dataset by hash before uploading it is routine, not a fault.
+    const bool routine = e.code() == proto::ERROR_CODE_UNKNOWN_DATASET && request.has_upload();
+    spdlog::log(routine ? spdlog::level::debug : spdlog::level::warn, "client {}: refused: {}",
+                Peer(identity), e.what());
+    reply = ErrorReplyFor(request.request_id(), e.code(), e.what());
+  } catch (const Error& e) {
+    spdlog::warn("client {}: refused: {}", Peer(identity), e.what());
+    reply = ErrorReplyFor(request.request_id(), proto::ERROR_CODE_INVALID, e.what());
+  } catch (const std::exception& e) {
+    spdlog::error("client {}: internal error: {}", Peer(identity), e.what());
+    reply = ErrorReplyFor(request.request_id(), proto::ERROR_CODE_INTERNAL, e.what());
+  }
+  reply.set_request_id(request.request_id());
+  return reply;
+}
+
+proto::ClientReply Coordinator::Impl::Upload(const proto::UploadDataset& upload) {
+  if (upload.content().size() > options_.max_dataset_bytes) {
+    throw ProtocolError(
+        proto::ERROR_CODE_TOO_LARGE,
+        "dataset " + upload.name() + " of " + std::to_string(upload.content().size()) +
+            " bytes is over the limit of " + std::to_string(options_.max_dataset_bytes));
+  }
+  const std::string sha = Sha256Hex(upload.content());
+  // The hash alone asks whether the coordinator has the dataset already.
+  if (upload.content().empty() && upload.sha256() != sha) {
+    ValidateDatasetRef(Ref(upload.sha256()), "dataset");
+    bool present = false;
+    {
+      std::lock_guard lock(store_mutex_);
+      present = store_.HasDataset(upload.sha256());
+    }
+    if (!present) {
+      throw ProtocolError(proto::ERROR_CODE_UNKNOWN_DATASET,
+                          "dataset " + upload.sha256() + " is not here; upload its bytes");
+    }
+    proto::ClientReply reply;
+    reply.mutable_stored()->mutable_dataset()->set_sha256(upload.sha256());
+    reply.mutable_stored()->mutable_dataset()->set_name(upload.name());
+    reply.mutable_stored()->set_already_present(true);
+    return reply;
+  }
+  if (upload.sha256() != sha) {
+    throw Error("dataset " + upload.name() + ": announced SHA-256 " +
+                upload.sha256().substr(0, 64) + " but its bytes hash to " + sha);
+  }
+  bool added = false;
+  {
+    std::lock_guard lock(store_mutex_);
+    added = store_.PutDataset(sha, upload.name(), upload.content());
+  }
+  proto::ClientReply reply;
+  proto::DatasetStored& stored = *reply.mutable_stored();
+  stored.mutable_dataset()->set_sha256(sha);
+  stored.mutable_dataset()->set_size_bytes(upload.content().size());
+  stored.mutable_dataset()->set_name(upload.name());
+  stored.set_already_present(!added);
+  if (added)
+    spdlog::log(notice_, "stored dataset {} ({} bytes)", upload.name(), upload.content().size());
+  return reply;
+}
+
+proto::ClientReply Coordinator::Impl::Submit(proto::JobSpec spec) {
+  if (spec.kind() != proto::JOB_KIND_LOCALIZE || !spec.has_localize()) {
+    throw Error("job kind " + std::to_string(spec.kind()) +
+                " is not one this coordinator runs (localize)");
+  }
+  // The spec's seed and island count, when given, are the job's.
+  if (spec.seed() != 0) spec.mutable_localize()->set_seed(spec.seed());
+  if (spec.islands() != 0) spec.mutable_localize()->set_islands(spec.islands());
+  if (spec.max_evaluations() != 0) {
+    throw Error("a localization's budget is per scan: set its generations, not max_evaluations");
+  }
+  LocalizeOptionsFromProto(spec.localize());  // throws Error naming a bad parameter
+  std::vector<std::pair<const char*, const proto::DatasetRef*>> refs = {{"log", &spec.log()},
+                                                                        {"map", &spec.map()}};
+  if (!spec.map_image().sha256().empty()) refs.emplace_back("map image", &spec.map_image());
+  if (!spec.relations().sha256().empty()) refs.emplace_back("relations", &spec.relations());
+  std::string id;
+  {
+    std::lock_guard lock(store_mutex_);
+    for (const auto& [what, ref] : refs) {
+      ValidateDatasetRef(*ref, what);
+      if (!store_.HasDataset(ref->sha256())) {
+        throw ProtocolError(proto::ERROR_CODE_UNKNOWN_DATASET,
+                            std::string(what) + " " + ref->name() + " (" + ref->sha256() +
+                                ") has not been uploaded");
+      }
+    }
+    if (store_.CountUnfinished() >= options_.max_queued_jobs) {
+      throw ProtocolError(proto::ERROR_CODE_QUEUE_FULL,
+                          "the queue is full (" + std::to_string(options_.max_queued_jobs) +
+                              " jobs queued or running); try again later");
+    }
+    id = store_.AddJob(spec, UnixNow());
+  }
+  spdlog::log(notice_, "{}: queued", id);
+  Schedule(id);
+  proto::ClientReply reply;
+  reply.mutable_accepted()->set_job_id(id);
+  return reply;
+}
+
+proto::JobStatus Coordinator::Impl::StatusOf(const std::string& job_id) {
+  std::lock_guard lock(store_mutex_);
+  auto status = store_.Status(job_id);
+  if (!status) throw ProtocolError(proto::ERROR_CODE_UNKNOWN_JOB, "no job " + job_id.substr(0, 64));
+  return *status;
+}
+
+proto::ClientReply Coordinator::Impl::Watch(const std::string& identity,
+                                            const proto::ClientRequest& request) {
+  const std::string& job_id = request.watch().job_id();
+  proto::ClientReply reply;
+  *reply.mutable_event()->mutable_status() = StatusOf(job_id);
+  if (!Finished(reply.event().status().state())) {
+    if (watchers_.size() >= options_.max_watchers) {
+      throw ProtocolError(proto::ERROR_CODE_QUEUE_FULL, "too many clients are watching jobs");
+    }
+    watchers_.emplace(job_id, Watcher{identity, request.request_id()});
+  }
+  return reply;
+}
+
+proto::ClientReply Coordinator::Impl::Result(const std::string& job_id) {
+  const proto::JobStatus status = StatusOf(job_id);
+  proto::ClientReply reply;
+  switch (status.state()) {
+    case proto::JOB_STATE_SUCCEEDED: {
+      std::lock_guard lock(store_mutex_);
+      reply.mutable_result()->set_job_id(job_id);
+      for (auto& f : store_.Result(job_id)) *reply.mutable_result()->add_files() = std::move(f);
+      return reply;
+    }
+    case proto::JOB_STATE_FAILED:
+      throw Error(job_id + " failed: " + status.error());
+    case proto::JOB_STATE_CANCELLED:
+      throw Error(job_id + " was cancelled");
+    default:
+      throw ProtocolError(proto::ERROR_CODE_NOT_FINISHED, job_id + " has not finished yet");
+  }
+}
+
+proto::ClientReply Coordinator::Impl::Cancel(const std::string& job_id) {
+  StatusOf(job_id);  // throws for an unknown job
+  bool cancelled = false;
+  {
+    std::lock_guard lock(store_mutex_);
+    cancelled =
+        store_.Finish(job_id, proto::JOB_STATE_CANCELLED, "cancelled by a client", UnixNow());
+  }
+  if (cancelled) {
+    board_.Cancel(job_id);
+    spdlog::log(notice_, "{}: cancelled", job_id);
+    Touch(job_id);
+  }
+  proto::ClientReply reply;
+  *reply.mutable_status() = StatusOf(job_id);
+  return reply;
+}
+
+void Coordinator::Impl::FlushEvents() {
+  std::set<std::string> touched;
+  {
+    std::lock_guard lock(jobs_mutex_);
+    touched.swap(touched_);
+  }
+  for (const std::string& job_id : touched) {
+    auto [first, last] = watchers_.equal_range(job_id);
+    if (first == last) continue;
+    proto::ClientReply reply;
+    *reply.mutable_event()->mutable_status() = StatusOf(job_id);
+    const bool finished = Finished(reply.event().status().state());
+    for (auto it = first; it != last;) {
+      reply.set_request_id(it->second.request_id);
+      const bool delivered = SendTo(clients_, it->second.identity, Encode(reply));
+      it = (finished || !delivered) ? watchers_.erase(it) : std::next(it);
+    }
+  }
+}
+
+// ---- Workers ----
+
+void Coordinator::Impl::OnWorkerFrames() {
+  for (int batch = 0; batch < 256; ++batch) {
+    auto frames = ReceiveFrames(workers_);
+    if (!frames) return;
+    if (frames->size() != 2) {
+      spdlog::warn("worker {}: dropped a message of {} frames",
+                   frames->empty() ? "?" : Peer(Text(frames->front())), frames->size());
+      continue;
+    }
+    const std::string identity = Text(frames->front());
+    try {
+      HandleWorker(identity, DecodeWorkerMessage(Bytes((*frames)[1]), limits_));
+    } catch (const ProtocolError& e) {
+      spdlog::warn("worker {}: dropped: {}", Peer(identity), e.what());
+    } catch (const std::exception& e) {
+      spdlog::warn("worker {}: dropped a message: {}", Peer(identity), e.what());
+    }
+  }
+}
+
+void Coordinator::Impl::SendToWorker(const std::string& identity,
+                                     const proto::CoordinatorMessage& message) {
+  if (!SendTo(workers_, identity, Encode(message))) {
+    if (auto task = table_.Remove(identity)) board_.Requeue(*task);
+  }
+}
+
+void Coordinator::Impl::HandleWorker(const std::string& identity,
+                                     const proto::WorkerMessage& message) {
+  const Clock::time_point now = Clock::now();
+  if (message.has_ready()) {
+    if (auto task = table_.Ready(identity, message.ready(), now)) board_.Requeue(*task);
+    spdlog::log(notice_, "worker {} ({}, {} threads) is ready", Peer(identity),
+                message.ready().hostname().substr(0, 64), message.ready().threads());
+    return;
+  }
+  if (!table_.Seen(identity, now)) {
+    // A worker we dropped (silent too long) or never met: it must say Ready again, and whatever
+    // it answers meanwhile is a straggler's.
+    if (message.has_result()) {
+      spdlog::warn("dropped a late answer for {} from worker {}", message.result().task_id(),
+                   Peer(identity));
+    }
+    proto::CoordinatorMessage bye;
+    bye.mutable_disconnect()->set_reason("unknown worker: send Ready");
+    SendTo(workers_, identity, Encode(bye));
+    return;
+  }
+  switch (message.message_case()) {
+    case proto::WorkerMessage::kHeartbeat:
+      break;
+    case proto::WorkerMessage::kFetch: {
+      proto::CoordinatorMessage reply;
+      proto::DatasetContent& content = *reply.mutable_dataset();
+      content.mutable_dataset()->set_sha256(message.fetch().sha256().substr(0, 64));
+      std::optional<std::string> bytes;
+      {
+        std::lock_guard lock(store_mutex_);
+        bytes = store_.Dataset(message.fetch().sha256());
+      }
+      if (bytes) {
+        content.mutable_dataset()->set_size_bytes(bytes->size());
+        content.set_content(std::move(*bytes));
+      }
+      SendToWorker(identity, reply);
+      break;
+    }
+    case proto::WorkerMessage::kResult: {
+      const proto::TaskResult& result = message.result();
+      if (table_.TaskOf(identity) != result.task_id()) {
+        spdlog::warn("dropped an answer for {} from worker {}: it holds another task",
+                     result.task_id(), Peer(identity));
+        break;
+      }
+      table_.Done(identity);
+      if (!board_.Complete(result)) {
+        spdlog::debug("dropped the answer for {}: nobody waits for it", result.task_id());
+      }
+      break;
+    }
+    case proto::WorkerMessage::kDisconnect: {
+      const auto task = table_.Remove(identity);
+      if (task) board_.Requeue(*task);
+      spdlog::log(notice_, "worker {} left: {}{}", Peer(identity),
+                  message.disconnect().reason().substr(0, 200),
+                  task ? " (its task " + *task + " goes to another)" : "");
+      break;
+    }
+    default:
+      break;
+  }
+}
+
+void Coordinator::Impl::Dispatch() {
+  while (table_.HasIdle()) {
+    std::optional<proto::Task> task = board_.Take();
+    if (!task) return;
+    const auto identity =
+        table_.Assign(task->task_id(), Clock::now() + Seconds(options_.task_timeout_seconds));
+    proto::CoordinatorMessage message;
+    *message.mutable_task() = std::move(*task);
+    SendToWorker(*identity, message);
+  }
+}
+
+void Coordinator::Impl::CheckWorkers(Clock::time_point now) {
+  const Clock::time_point silent_since =
+      now - Seconds(options_.heartbeat_seconds * options_.liveness);
+  for (const std::string& identity : table_.Lost(now, silent_since)) {
+    const auto task = table_.Remove(identity);
+    spdlog::warn("worker {} is lost (silent or overdue){}", Peer(identity),
+                 task ? "; its task " + *task + " goes to another" : "");
+    if (task) board_.Requeue(*task);
+    proto::CoordinatorMessage bye;
+    bye.mutable_disconnect()->set_reason("silent or overdue: send Ready");
+    SendTo(workers_, identity, Encode(bye));
+  }
+}
+
+// ---- Jobs ----
+
+void Coordinator::Impl::Schedule(const std::string& job_id) {
+  {
+    std::lock_guard lock(jobs_mutex_);
+    runnable_.push_back(job_id);
+  }
+  jobs_cv_.notify_one();
+}
+
+void Coordinator::Impl::Touch(const std::string& job_id) {
+  {
+    std::lock_guard lock(jobs_mutex_);
+    touched_.insert(job_id);
+  }
+  waker_.Wake();
+}
+
+void Coordinator::Impl::JobLoop(const std::stop_token& stop) {
+  for (;;) {
+    std::string job_id;
+    {
+      std::unique_lock lock(jobs_mutex_);
+      jobs_cv_.wait(lock, [&] { return stop.stop_requested() || !runnable_.empty(); });
+      if (stop.stop_requested()) return;
+      job_id = std::move(runnable_.front());
+      runnable_.pop_front();
+    }
+    RunJob(job_id);
+  }
+}
+
+void Coordinator::Impl::RunJob(const std::string& job_id) {
+  JobContext context;
+  context.job_id = job_id;
+  context.board = &board_;
+  context.files = &files_;
+  context.checkpoint_seconds = options_.checkpoint_seconds;
+  context.worker_threads = worker_threads_;
+  std::uint64_t slot_epoch = 0;
+  try {
+    {
+      std::lock_guard lock(store_mutex_);
+      const auto status = store_.Status(job_id);
+      if (!status || Finished(status->state())) return;  // cancelled while it waited
+      context.spec = *store_.Spec(job_id);
+      std::vector<proto::DatasetRef> refs = {context.spec.log(), context.spec.map()};
+      if (!context.spec.map_image().sha256().empty()) refs.push_back(context.spec.map_image());
+      if (!context.spec.relations().sha256().empty()) refs.push_back(context.spec.relations());
+      for (const proto::DatasetRef& ref : refs) {
+        if (files_.Find(ref)) continue;
+        const auto content = store_.Dataset(ref.sha256());
+        if (!content) throw Error("dataset " + ref.name() + " is missing from the database");
+        files_.Put(ref, *content);
+      }
+      const auto checkpoints = store_.Checkpoints(job_id);
+      if (!checkpoints.empty()) {
+        context.resume = checkpoints.front().bytes;
+        slot_epoch = checkpoints.front().epoch;
+      }
+      store_.SetRunning(job_id, context.resume ? "resuming" : "loading", 0, 0, 0);
+    }
+    spdlog::log(notice_, "{}: {}", job_id,
+                context.resume ? "resuming from its checkpoint" : "running");
+    Touch(job_id);
+    context.save_checkpoint = [&](const std::string& bytes) {
+      std::lock_guard lock(store_mutex_);
+      store_.SaveCheckpoint(job_id, 0, ++slot_epoch, bytes);
+    };
+    Clock::time_point last_progress{};
+    context.progress = [&](const proto::JobStatus& p, double) {
+      const Clock::time_point now = Clock::now();
+      if (now - last_progress < std::chrono::milliseconds(200) && p.done() != p.total()) return;
+      last_progress = now;
+      {
+        std::lock_guard lock(store_mutex_);
+        store_.SetRunning(job_id, p.phase(), p.done(), p.total(), p.evaluations());
+      }
+      Touch(job_id);
+    };
+    const std::vector<proto::ResultFile> files = RunLocalizeJob(context);
+    bool succeeded = false;
+    {
+      std::lock_guard lock(store_mutex_);
+      succeeded = store_.Succeed(job_id, files, UnixNow());
+    }
+    if (succeeded) spdlog::log(notice_, "{}: succeeded", job_id);
+  } catch (const JobInterrupted& e) {
+    spdlog::log(notice_, "{}: {}", job_id, e.what());
+  } catch (const std::exception& e) {
+    spdlog::warn("{}: failed: {}", job_id, e.what());
+    std::lock_guard lock(store_mutex_);
+    store_.Finish(job_id, proto::JOB_STATE_FAILED, e.what(), UnixNow());
+  }
+  Touch(job_id);
+}
+
+// ---- Coordinator ----
+
+Coordinator::Coordinator(zmq::context_t& context, CoordinatorOptions options)
+    : impl_(std::make_unique<Impl>(context, std::move(options))) {}
+Coordinator::~Coordinator() = default;
+void Coordinator::Run(std::stop_token stop) { impl_->Run(stop); }
+std::string Coordinator::clients_endpoint() const { return impl_->clients_endpoint(); }
+std::string Coordinator::workers_endpoint() const { return impl_->workers_endpoint(); }
+
+}  // namespace evoslam

@@ -1,0 +1,66 @@
+#ifndef EVOSLAM_COORDINATOR_COORDINATOR_H_
+#define EVOSLAM_COORDINATOR_COORDINATOR_H_
+
+#include <zmq.hpp>
+
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <set>
+#include <stop_token>
+#include <string>
+
+namespace evoslam {
+
+struct CoordinatorOptions {
+  std::string clients_endpoint = "tcp://127.0.0.1:5555";
+  std::string workers_endpoint = "tcp://127.0.0.1:5556";
+  std::filesystem::path db;
+  // CURVE: the coordinator's secret key and the public keys it accepts. Empty secret: plain
+  // TCP (then bind only to trusted interfaces; 127.0.0.1 is the default).
+  std::string curve_secret_key;
+  std::set<std::string> client_keys, worker_keys;
+
+  std::size_t max_message_bytes = std::size_t{256} << 20;
+  std::size_t max_dataset_bytes = std::size_t{256} << 20;
+  std::size_t max_queued_jobs = 10000;  // jobs queued or running
+  std::size_t max_running_jobs = 8;     // jobs whose threads run at once
+  std::size_t max_watchers = 1000;
+  double heartbeat_seconds = 1.0;
+  int liveness = 3;                   // heartbeats missed before a worker counts as gone
+  double task_timeout_seconds = 600;  // a task not answered by then is given to another worker
+  double checkpoint_seconds = 0.0;    // least time between two saved checkpoints of a job
+  bool quiet = false;  // comings and goings logged at debug level instead of info (embedded)
+};
+
+// The service's hub. Clients submit jobs on one ROUTER socket; workers take tasks on another,
+// one task at a time (the load-balancing broker), and both sides exchange heartbeats (the
+// Paranoid Pirate pattern): a worker silent for `liveness` heartbeats, or holding a task past
+// its deadline, is dropped and its task given to another. Each running job has a thread that
+// holds its map and trajectory and posts its tasks. All state that matters is in the SQLite
+// database: after a crash a coordinator restarted on the same file resumes every unfinished job
+// from its last checkpoint.
+class Coordinator {
+ public:
+  // Opens the database, binds both sockets (throws Error naming the endpoint when one cannot be
+  // bound) and queues the unfinished jobs found in the database.
+  Coordinator(zmq::context_t& context, CoordinatorOptions options);
+  ~Coordinator();
+  Coordinator(const Coordinator&) = delete;
+  Coordinator& operator=(const Coordinator&) = delete;
+
+  // Serves until `stop` is requested. Jobs still running then are left to resume next time.
+  void Run(std::stop_token stop);
+
+  // The endpoints actually bound (a tcp port 0 or '*' resolved).
+  std::string clients_endpoint() const;
+  std::string workers_endpoint() const;
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace evoslam
+
+#endif  // EVOSLAM_COORDINATOR_COORDINATOR_H_

@@ -1,0 +1,85 @@
+// evoslam-coordinator: the service's hub. See coordinator/README.md.
+#include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "common/protocol/curve_keys.h"
+#include "common/util/error.h"
+#include "common/util/program_options.h"
+#include "common/util/stop_signals.h"
+#include "coordinator/coordinator.h"
+
+int main(int argc, char** argv) {
+  evoslam::StopSignals signals;  // first, so every thread inherits the blocked signals
+  evoslam::CoordinatorOptions options;
+  std::string curve_secret, log_level = "info";
+  std::vector<std::filesystem::path> client_keys, worker_keys;
+  double max_message_mb = 256, max_dataset_mb = 256;
+
+  CLI::App app{"evoslam-coordinator: holds jobs, hands their work to evoslam-worker processes"};
+  app.add_option("--clients", options.clients_endpoint, "endpoint clients connect to")
+      ->capture_default_str();
+  app.add_option("--workers", options.workers_endpoint, "endpoint workers connect to")
+      ->capture_default_str();
+  app.add_option("--db", options.db, "SQLite database of jobs, datasets and checkpoints")
+      ->required();
+  app.add_option("--curve-secret-key", curve_secret,
+                 "turn CURVE on with this secret key file (evoslam keygen)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--client-keys", client_keys,
+                 "public keys (.pub files or folders of them) of the clients to accept");
+  app.add_option("--worker-keys", worker_keys,
+                 "public keys (.pub files or folders of them) of the workers to accept");
+  app.add_option("--max-message-mb", max_message_mb, "largest message accepted, MiB")
+      ->capture_default_str()
+      ->check(CLI::Range(0.001, 2000.0));
+  app.add_option("--max-dataset-mb", max_dataset_mb, "largest dataset accepted, MiB")
+      ->capture_default_str()
+      ->check(CLI::Range(0.001, 2000.0));
+  app.add_option("--max-queued-jobs", options.max_queued_jobs, "jobs queued or running at most")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 10'000'000));
+  app.add_option("--max-running-jobs", options.max_running_jobs, "jobs run at once")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1024));
+  app.add_option("--heartbeat", options.heartbeat_seconds, "seconds between heartbeats")
+      ->capture_default_str()
+      ->check(CLI::Range(0.01, 60.0));
+  app.add_option("--liveness", options.liveness, "heartbeats missed before a worker is lost")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100));
+  app.add_option("--task-timeout", options.task_timeout_seconds,
+                 "seconds a task may take before it goes to another worker")
+      ->capture_default_str()
+      ->check(CLI::Range(0.1, 1e6));
+  app.add_option("--checkpoint-interval", options.checkpoint_seconds,
+                 "least seconds between two saved checkpoints of a job (0: at every epoch)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e6));
+  evoslam::AddLogLevelOption(app, log_level);
+  if (const auto status = evoslam::ParseProgramOptions(app, argc, argv, log_level)) return *status;
+  try {
+    options.max_message_bytes = static_cast<std::size_t>(max_message_mb * (1 << 20));
+    options.max_dataset_bytes = static_cast<std::size_t>(max_dataset_mb * (1 << 20));
+    if (!curve_secret.empty()) {
+      options.curve_secret_key = evoslam::ReadCurveKey(curve_secret);
+      if (client_keys.empty() || worker_keys.empty()) {
+        throw evoslam::Error("with CURVE on, give --client-keys and --worker-keys");
+      }
+      options.client_keys = evoslam::ReadPublicKeys(client_keys);
+      options.worker_keys = evoslam::ReadPublicKeys(worker_keys);
+    } else if (!client_keys.empty() || !worker_keys.empty()) {
+      throw evoslam::Error("--client-keys and --worker-keys need --curve-secret-key");
+    }
+    zmq::context_t context;
+    evoslam::Coordinator coordinator(context, options);
+    coordinator.Run(signals.token());
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,101 @@
+#include "coordinator/task_board.h"
+
+#include <algorithm>
+#include <utility>
+
+namespace evoslam {
+
+TaskBoard::TaskBoard(std::function<void()> wake) : wake_(std::move(wake)) {}
+
+std::vector<proto::TaskResult> TaskBoard::RunAll(const std::string& job_id,
+                                                 std::vector<proto::Task> tasks) {
+  std::vector<std::string> ids;
+  {
+    std::lock_guard lock(mutex_);
+    if (shutdown_) throw JobInterrupted("the coordinator is shutting down");
+    if (cancelled_.contains(job_id)) throw JobInterrupted("job " + job_id + " was cancelled");
+    for (proto::Task& task : tasks) {
+      std::string id = "t-" + std::to_string(next_id_++);
+      task.set_task_id(id);
+      task.set_job_id(job_id);
+      line_.push_back(id);
+      posted_.emplace(id, Entry{std::move(task), std::nullopt});
+      ids.push_back(std::move(id));
+    }
+  }
+  if (wake_) wake_();
+  std::unique_lock lock(mutex_);
+  const auto forget = [&] {
+    for (const auto& id : ids) posted_.erase(id);
+    std::erase_if(line_, [&](const std::string& id) { return !posted_.contains(id); });
+  };
+  done_.wait(lock, [&] {
+    return shutdown_ || cancelled_.contains(job_id) ||
+           std::all_of(ids.begin(), ids.end(),
+                       [&](const std::string& id) { return posted_.at(id).result.has_value(); });
+  });
+  if (shutdown_ || cancelled_.contains(job_id)) {
+    forget();
+    throw JobInterrupted(shutdown_ ? "the coordinator is shutting down"
+                                   : "job " + job_id + " was cancelled");
+  }
+  std::vector<proto::TaskResult> results;
+  results.reserve(ids.size());
+  for (const auto& id : ids) results.push_back(std::move(*posted_.at(id).result));
+  forget();
+  for (const proto::TaskResult& r : results) {
+    if (r.has_error()) throw Error("a worker could not run a task: " + r.error().message());
+  }
+  return results;
+}
+
+std::optional<proto::Task> TaskBoard::Take() {
+  std::lock_guard lock(mutex_);
+  while (!line_.empty()) {
+    const std::string id = std::move(line_.front());
+    line_.pop_front();
+    const auto it = posted_.find(id);
+    if (it != posted_.end() && !it->second.result) return it->second.task;
+  }
+  return std::nullopt;
+}
+
+bool TaskBoard::Complete(const proto::TaskResult& result) {
+  {
+    std::lock_guard lock(mutex_);
+    const auto it = posted_.find(result.task_id());
+    if (it == posted_.end() || it->second.result) return false;
+    it->second.result = result;
+  }
+  done_.notify_all();
+  return true;
+}
+
+void TaskBoard::Requeue(const std::string& task_id) {
+  std::lock_guard lock(mutex_);
+  const auto it = posted_.find(task_id);
+  if (it != posted_.end() && !it->second.result) line_.push_front(task_id);
+}
+
+void TaskBoard::Cancel(const std::string& job_id) {
+  {
+    std::lock_guard lock(mutex_);
+    cancelled_.insert(job_id);
+  }
+  done_.notify_all();
+}
+
+void TaskBoard::Shutdown() {
+  {
+    std::lock_guard lock(mutex_);
+    shutdown_ = true;
+  }
+  done_.notify_all();
+}
+
+std::size_t TaskBoard::waiting() const {
+  std::lock_guard lock(mutex_);
+  return line_.size();
+}
+
+}  // namespace evoslam

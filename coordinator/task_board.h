@@ -1,0 +1,72 @@
+#ifndef EVOSLAM_COORDINATOR_TASK_BOARD_H_
+#define EVOSLAM_COORDINATOR_TASK_BOARD_H_
+
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "common/util/error.h"
+#include "evoslam/service.pb.h"
+
+namespace evoslam {
+
+// Thrown to a job's thread when its job is cancelled, or when the coordinator shuts down.
+class JobInterrupted : public Error {
+ public:
+  using Error::Error;
+};
+
+// The tasks job threads post and the broker hands to workers. A job thread posts a set of tasks
+// and sleeps until every one has its result; the broker takes waiting tasks one at a time for
+// idle workers, completes them, and puts back at the front those whose worker died.
+class TaskBoard {
+ public:
+  // Called (from the posting thread) whenever tasks start waiting: wakes the broker.
+  explicit TaskBoard(std::function<void()> wake);
+
+  // Gives every task an id, posts them and waits for their results, in the order of `tasks`.
+  // Throws JobInterrupted when the job is cancelled or the board shut down, and Error when a
+  // worker reports that a task failed.
+  std::vector<proto::TaskResult> RunAll(const std::string& job_id, std::vector<proto::Task> tasks);
+
+  // The oldest waiting task, removed from the waiting line.
+  std::optional<proto::Task> Take();
+  // Records a result. False when nobody waits for it any more (a task of a cancelled job, or
+  // one already answered): the caller drops it.
+  bool Complete(const proto::TaskResult& result);
+  // Puts a task that was taken, but whose worker is gone, back at the front of the line.
+  void Requeue(const std::string& task_id);
+
+  // Wakes the job's waiting thread with JobInterrupted and drops its waiting tasks.
+  void Cancel(const std::string& job_id);
+  // Interrupts every job; RunAll throws from then on.
+  void Shutdown();
+
+  std::size_t waiting() const;
+
+ private:
+  struct Entry {
+    proto::Task task;
+    std::optional<proto::TaskResult> result;
+  };
+
+  std::function<void()> wake_;
+  mutable std::mutex mutex_;
+  std::condition_variable done_;
+  std::uint64_t next_id_ = 1;
+  std::deque<std::string> line_;         // ids of tasks waiting for a worker
+  std::map<std::string, Entry> posted_;  // every task posted and not yet collected
+  std::set<std::string> cancelled_;      // jobs whose threads must stop
+  bool shutdown_ = false;
+};
+
+}  // namespace evoslam
+
+#endif  // EVOSLAM_COORDINATOR_TASK_BOARD_H_

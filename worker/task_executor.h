@@ -1,0 +1,38 @@
+#ifndef EVOSLAM_WORKER_TASK_EXECUTOR_H_
+#define EVOSLAM_WORKER_TASK_EXECUTOR_H_
+
+#include <list>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "common/service/dataset_files.h"
+#include "common/service/localize_inputs.h"
+#include "evoslam/service.pb.h"
+
+namespace evoslam {
+
+// Runs a coordinator's tasks: rebuilds the task's problem from the job's datasets (the parsed
+// inputs of the last few jobs stay in memory) and evaluates a batch or evolves an island on it.
+class TaskExecutor {
+ public:
+  explicit TaskExecutor(std::shared_ptr<DatasetFiles> files);
+
+  // The datasets a task needs that are not in the cache yet.
+  std::vector<proto::DatasetRef> Missing(const proto::Task& task) const;
+  // Runs a task whose datasets are all here. Never throws: a task that cannot run comes back
+  // with an error that says why.
+  proto::TaskResult Run(const proto::Task& task);
+
+ private:
+  std::shared_ptr<const LocalizeInputs> Inputs(const proto::ProblemSpec& problem);
+
+  std::shared_ptr<DatasetFiles> files_;
+  // Most recently used first; a handful of jobs at a time is what one worker serves.
+  std::list<std::pair<std::string, std::shared_ptr<const LocalizeInputs>>> inputs_;
+};
+
+}  // namespace evoslam
+
+#endif  // EVOSLAM_WORKER_TASK_EXECUTOR_H_
