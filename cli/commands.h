@@ -12,6 +12,8 @@ void AddSimulateCommand(CLI::App& app);
 void AddLocalizeCommand(CLI::App& app);
 void AddEvalCommand(CLI::App& app);
 void AddKeygenCommand(CLI::App& app);
+// jobs, status, watch, result, cancel, workers: managing jobs on a running coordinator.
+void AddJobCommands(CLI::App& app);
 
 }  // namespace evoslam::cli
 

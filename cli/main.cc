@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   evoslam::cli::AddLocalizeCommand(app);
   evoslam::cli::AddEvalCommand(app);
   evoslam::cli::AddKeygenCommand(app);
+  evoslam::cli::AddJobCommands(app);
 
   // Exit status: 0 done, 1 bad input (files, data), 2 bad command line, 70 (EX_SOFTWARE) a bug.
   try {

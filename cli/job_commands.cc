@@ -1,0 +1,120 @@
+#include <zmq.hpp>
+
+#include <cstdio>
+#include <ctime>
+#include <memory>
+#include <string>
+
+#include "cli/commands.h"
+#include "cli/job_client.h"
+#include "cli/service_options.h"
+#include "common/service/service_client.h"
+#include "common/util/error.h"
+#include "common/util/progress_bar.h"
+
+namespace evoslam::cli {
+namespace {
+
+struct JobArgs {
+  ServiceArgs service;
+  std::string job_id;
+  std::string out;
+};
+
+// A client of the coordinator the arguments name, with the context it lives in.
+struct Connection {
+  explicit Connection(const ServiceArgs& args) : client(context, ClientOptionsFrom(args)) {}
+  zmq::context_t context;
+  ServiceClient client;
+};
+
+std::string When(double unix_s) {
+  if (unix_s <= 0) return "-";
+  const auto t = static_cast<std::time_t>(unix_s);
+  std::tm tm{};
+  localtime_r(&t, &tm);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%d %H:%M:%S", &tm);
+  return text;
+}
+
+void PrintStatus(const proto::JobStatus& s) {
+  std::printf("%s  %s  %s", s.job_id().c_str(), std::string(JobStateName(s.state())).c_str(),
+              s.phase().c_str());
+  if (s.total() > 0) {
+    std::printf(" %llu/%llu", static_cast<unsigned long long>(s.done()),
+                static_cast<unsigned long long>(s.total()));
+  }
+  std::printf("  submitted %s", When(s.submitted_unix_s()).c_str());
+  if (s.finished_unix_s() > 0) std::printf("  finished %s", When(s.finished_unix_s()).c_str());
+  if (!s.error().empty()) std::printf("\n  error: %s", s.error().c_str());
+  std::printf("\n");
+}
+
+CLI::App* JobCommand(CLI::App& app, const char* name, const char* help,
+                     const std::shared_ptr<JobArgs>& a, bool takes_id) {
+  auto* cmd = app.add_subcommand(name, help);
+  AddServiceOptions(cmd, a->service, false);
+  if (takes_id) cmd->add_option("job", a->job_id, "the job's id, e.g. job-3")->required();
+  return cmd;
+}
+
+}  // namespace
+
+void AddJobCommands(CLI::App& app) {
+  auto a = std::make_shared<JobArgs>();
+  JobCommand(app, "jobs", "List the coordinator's jobs", a, false)->callback([a] {
+    Connection c(a->service);
+    for (const proto::JobStatus& s : c.client.Jobs()) PrintStatus(s);
+  });
+  JobCommand(app, "status", "Show one job's state and progress", a, true)->callback([a] {
+    Connection c(a->service);
+    PrintStatus(c.client.Status(a->job_id));
+  });
+  JobCommand(app, "watch", "Follow a job to its end with a progress bar", a, true)->callback([a] {
+    Connection c(a->service);
+    std::unique_ptr<ProgressBar> bar;
+    std::string phase;
+    const proto::JobStatus s = c.client.Watch(a->job_id, [&](const proto::ProgressEvent& e) {
+      const proto::JobStatus& st = e.status();
+      if (st.total() == 0) return;
+      if (!bar || st.phase() != phase) {
+        bar.reset();
+        phase = st.phase();
+        bar = std::make_unique<ProgressBar>(phase, st.total());
+      }
+      bar->Update(st.done());
+    });
+    bar.reset();
+    PrintStatus(s);
+    if (s.state() != proto::JOB_STATE_SUCCEEDED) {
+      throw Error(a->job_id + " " + std::string(JobStateName(s.state())));
+    }
+  });
+  auto* result = JobCommand(app, "result", "Write a finished job's files", a, true);
+  result->add_option("--out", a->out, "output directory")->required();
+  result->callback([a] {
+    Connection c(a->service);
+    const auto files = c.client.Result(a->job_id);
+    WriteResultFiles(files, a->out);
+    for (const proto::ResultFile& f : files)
+      std::printf("%s/%s\n", a->out.c_str(), f.name().c_str());
+  });
+  JobCommand(app, "cancel", "Cancel a queued or running job", a, true)->callback([a] {
+    Connection c(a->service);
+    PrintStatus(c.client.Cancel(a->job_id));
+  });
+  JobCommand(app, "workers", "List the workers connected to the coordinator", a, false)
+      ->callback([a] {
+        Connection c(a->service);
+        const auto workers = c.client.Workers();
+        for (const proto::WorkerInfo& w : workers) {
+          std::printf("%s  %s  %u threads  %s  %llu tasks done\n", w.worker_id().c_str(),
+                      w.hostname().c_str(), w.threads(), w.busy() ? "busy" : "idle",
+                      static_cast<unsigned long long>(w.tasks_done()));
+        }
+        if (workers.empty()) std::printf("no workers connected\n");
+      });
+}
+
+}  // namespace evoslam::cli
