@@ -14,6 +14,7 @@ void AddEvalCommand(CLI::App& app);
 void AddKeygenCommand(CLI::App& app);
 // jobs, status, watch, result, cancel, workers: managing jobs on a running coordinator.
 void AddJobCommands(CLI::App& app);
+void AddTuneCommand(CLI::App& app);
 
 }  // namespace evoslam::cli
 

@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   evoslam::cli::AddEvalCommand(app);
   evoslam::cli::AddKeygenCommand(app);
   evoslam::cli::AddJobCommands(app);
+  evoslam::cli::AddTuneCommand(app);
 
   // Exit status: 0 done, 1 bad input (files, data), 2 bad command line, 70 (EX_SOFTWARE) a bug.
   try {

@@ -51,6 +51,9 @@ std::vector<proto::ResultFile> LocalizeOutputs(const MapModel& map, const Datase
   report.set_runtime_s(result.seconds);
   report.set_scans_per_second(result.seconds > 0 ? result.trajectory.size() / result.seconds : 0);
   report.set_threads(threads);
+  double fitness_sum = 0.0;
+  for (double f : result.fitness) fitness_sum += f;
+  report.set_mean_fitness(result.fitness.empty() ? 0.0 : fitness_sum / result.fitness.size());
 
   std::vector<StampedPose> truth;
   for (std::size_t i = 0; i < result.trajectory.size(); ++i) {
