@@ -29,7 +29,9 @@ struct CoordinatorOptions {
   double heartbeat_seconds = 1.0;
   int liveness = 3;                   // heartbeats missed before a worker counts as gone
   double task_timeout_seconds = 600;  // a task not answered by then is given to another worker
-  double checkpoint_seconds = 0.0;    // least time between two saved checkpoints of a job
+  // Least time between two saved checkpoints of a job: every epoch of a long search is saved,
+  // but jobs of many millisecond epochs are not slowed by a database write each.
+  double checkpoint_seconds = 1.0;
   bool quiet = false;  // comings and goings logged at debug level instead of info (embedded)
 };
 

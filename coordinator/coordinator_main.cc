@@ -55,8 +55,9 @@ int main(int argc, char** argv) {
                  "seconds a task may take before it goes to another worker")
       ->capture_default_str()
       ->check(CLI::Range(0.1, 1e6));
-  app.add_option("--checkpoint-interval", options.checkpoint_seconds,
-                 "least seconds between two saved checkpoints of a job (0: at every epoch)")
+  app.add_option(
+         "--checkpoint-interval", options.checkpoint_seconds,
+         "least seconds between two saved checkpoints of a job (0: at every migration epoch)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1e6));
   evoslam::AddLogLevelOption(app, log_level);

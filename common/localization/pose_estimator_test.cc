@@ -99,26 +99,9 @@ TEST(EstimatorParamsTest, RejectsBadValues) {
   EXPECT_THROW(ParseEstimatorKind("4d"), Error);
 }
 
-Dataset WalkThroughBoxRoom(int scans) {
-  const LineMap map = testing::BoxRoom();
-  Dataset d;
-  d.source = "synthetic";
-  for (int i = 0; i < scans; ++i) {
-    const double s = i * 0.05;
-    const Pose2 p(2.5 + s, 2.0 + 0.6 * s, 0.55 + 0.3 * s);
-    LaserScan scan = testing::ScanFrom(map, p);
-    scan.timestamp = 1000.0 + 0.2 * i;
-    // Odometry that drifts: it overestimates each step by 10 %.
-    scan.odometry = Pose2(2.5 + 1.1 * s, 2.0 + 0.66 * s, 0.55 + 0.33 * s);
-    scan.pose = scan.odometry;
-    d.scans.push_back(std::move(scan));
-  }
-  return d;
-}
-
 TEST(LocalizeTest, TracksAWalkWithoutOdometry) {
   const MapModel map(testing::BoxRoom());
-  const Dataset d = WalkThroughBoxRoom(30);
+  const Dataset d = testing::WalkThroughBoxRoom(30);
   const LocalizeResult r = Localize(map, d, {});
   ASSERT_EQ(r.trajectory.size(), 30u);
   double sum_sq = 0;
@@ -138,7 +121,7 @@ class LocalizeThreadsTest : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(LocalizeThreadsTest, SameBitsWithOneAndTwoThreads) {
   const MapModel map(testing::BoxRoom());
-  const Dataset d = WalkThroughBoxRoom(8);
+  const Dataset d = testing::WalkThroughBoxRoom(8);
   LocalizeOptions options;
   options.seed = 99;
   options.estimator.optimizer = ParseOptimizer(GetParam(), options.estimator.algorithm);
@@ -169,7 +152,7 @@ TEST(LocalizeTest, OdometryCentringUsesTheOdometryIncrement) {
   // With the window centred on the prediction the walk is followed too, and a window too small
   // for the step without odometry still works with it.
   const MapModel map(testing::BoxRoom());
-  Dataset d = WalkThroughBoxRoom(10);
+  Dataset d = testing::WalkThroughBoxRoom(10);
   for (std::size_t i = 0; i < d.scans.size(); ++i) d.scans[i].odometry = *d.scans[i].true_pose;
   LocalizeOptions options;
   options.estimator.window = 0.04;  // smaller than the 5.8 cm step

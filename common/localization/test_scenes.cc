@@ -39,4 +39,20 @@ LaserScan ScanFrom(const LineMap& map, const Pose2& pose, int beams, double max_
   return scan;
 }
 
+Dataset WalkThroughBoxRoom(int scans) {
+  const LineMap map = BoxRoom();
+  Dataset d;
+  d.source = "synthetic";
+  for (int i = 0; i < scans; ++i) {
+    const double s = i * 0.05;
+    const Pose2 p(2.5 + s, 2.0 + 0.6 * s, 0.55 + 0.3 * s);
+    LaserScan scan = ScanFrom(map, p);
+    scan.timestamp = 1000.0 + 0.2 * i;
+    scan.odometry = Pose2(2.5 + 1.1 * s, 2.0 + 0.66 * s, 0.55 + 0.33 * s);
+    scan.pose = scan.odometry;
+    d.scans.push_back(std::move(scan));
+  }
+  return d;
+}
+
 }  // namespace evoslam::testing

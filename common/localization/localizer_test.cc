@@ -1,0 +1,142 @@
+#include "common/localization/localizer.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "common/engine/engine_proto.h"
+#include "common/localization/localize_params.h"
+#include "common/localization/test_scenes.h"
+#include "common/util/error.h"
+
+namespace evoslam {
+namespace {
+
+LocalizeOptions IslandOptions() {
+  LocalizeOptions options;
+  options.seed = 21;
+  options.estimator.optimizer = ParseOptimizer("island", options.estimator.algorithm);
+  options.estimator.islands = 3;
+  options.estimator.migration.interval = 5;
+  return options;
+}
+
+void ExpectSameTrajectory(const LocalizeResult& a, const LocalizeResult& b) {
+  ASSERT_EQ(a.trajectory.size(), b.trajectory.size());
+  for (std::size_t i = 0; i < a.trajectory.size(); ++i) {
+    EXPECT_EQ(a.trajectory[i].pose, b.trajectory[i].pose) << i;
+    EXPECT_EQ(a.fitness[i], b.fitness[i]) << i;
+  }
+  EXPECT_EQ(a.evaluations, b.evaluations);
+}
+
+TEST(LocalizeResumeTest, ResumingFromAnyCheckpointGivesTheUninterruptedResult) {
+  const MapModel map(testing::BoxRoom());
+  const Dataset d = testing::WalkThroughBoxRoom(6);
+  const LocalizeOptions options = IslandOptions();
+  std::vector<LocalizeState> states;
+  LocalizeRuntime recording;
+  recording.checkpoint = [&](const LocalizeState& s) { states.push_back(s); };
+  const LocalizeResult straight = Localize(map, d, options, recording);
+  // Between scans, and part-way through a scan's island search (25 generations in epochs of 5).
+  ASSERT_GT(states.size(), 12u);
+  std::size_t part_way = 0;
+  for (const LocalizeState& s : states) part_way += s.search.has_value();
+  EXPECT_EQ(part_way, 6u * 4u);
+  for (const std::size_t k :
+       {std::size_t{0}, std::size_t{3}, states.size() / 2, states.size() - 2}) {
+    LocalizeRuntime resumed;
+    resumed.resume = &states[k];
+    ExpectSameTrajectory(Localize(map, d, options, resumed), straight);
+  }
+  LocalizeState wrong = states[3];
+  wrong.next_scan = 5;
+  LocalizeRuntime bad;
+  bad.resume = &wrong;
+  EXPECT_THROW(Localize(map, d, options, bad), Error);
+}
+
+// The service's way of running a search: islands shipped out and back as checkpoints, lattice
+// batches evaluated in small chunks elsewhere. The result is the one computed in place.
+TEST(LocalizeRuntimeTest, SearchesRunElsewhereGiveTheSameBits) {
+  const MapModel map(testing::BoxRoom());
+  const Dataset d = testing::WalkThroughBoxRoom(4);
+  LocalizeRuntime remote;
+  std::size_t shipped = 0, chunks = 0;
+  remote.search = [&](std::size_t scan, const Pose2& center) {
+    SearchRuntime runtime;
+    runtime.step = [&, scan, center](const Problem&, std::vector<Island>& islands, bool start,
+                                     std::size_t generations) {
+      // The worker's side: the problem rebuilt from the job and the scan alone.
+      const ScanProblem rebuilt = MakeScanProblem(map, d, scan, center, IslandOptions());
+      for (Island& island : islands) {
+        Island there = Island::FromCheckpoint(FromProto(ToProto(island.Checkpoint())));
+        if (start) there.Start(*rebuilt.problem);
+        if (generations > 0) there.Evolve(*rebuilt.problem, generations);
+        island = Island::FromCheckpoint(FromProto(ToProto(there.Checkpoint())));
+        ++shipped;
+      }
+    };
+    runtime.evaluate = [&](const Problem& problem,
+                           const Eigen::Ref<const Eigen::MatrixXd>& candidates,
+                           std::span<double> fitness) {
+      for (Eigen::Index first = 0; first < candidates.cols(); first += 7, ++chunks) {
+        const Eigen::Index n = std::min<Eigen::Index>(7, candidates.cols() - first);
+        problem.Evaluate(
+            candidates.middleCols(first, n),
+            fitness.subspan(static_cast<std::size_t>(first), static_cast<std::size_t>(n)));
+      }
+    };
+    return runtime;
+  };
+  ExpectSameTrajectory(Localize(map, d, IslandOptions(), remote),
+                       Localize(map, d, IslandOptions()));
+  EXPECT_GT(shipped, 0u);
+
+  LocalizeOptions exhaustive;
+  exhaustive.estimator.optimizer = OptimizerKind::kExhaustive;
+  exhaustive.estimator.exhaustive_step = 0.05;
+  ExpectSameTrajectory(Localize(map, d, exhaustive, remote), Localize(map, d, exhaustive));
+  EXPECT_GT(chunks, 4u * 10u);
+}
+
+TEST(LocalizeParamsTest, TheWireFormRunsTheSameJob) {
+  const MapModel map(testing::BoxRoom());
+  const Dataset d = testing::WalkThroughBoxRoom(3);
+  for (const char* optimizer : {"de", "pso", "sga", "immune", "island", "exhaustive"}) {
+    LocalizeOptions options = IslandOptions();
+    options.estimator.optimizer = ParseOptimizer(optimizer, options.estimator.algorithm);
+    options.estimator.heading_half_window = 0.3;
+    options.estimator.heading_step = 0.01;
+    options.estimator.exhaustive_step = 0.05;
+    options.start = Pose2(2.5, 2.0, 0.55);
+    options.max_range = 7.5;
+    proto::LocalizeParams wire;
+    ASSERT_TRUE(wire.ParseFromString(ToProto(options).SerializeAsString()));
+    const LocalizeOptions back = LocalizeOptionsFromProto(wire);
+    EXPECT_EQ(back.estimator.heading_half_window, 0.3);
+    EXPECT_EQ(back.start->x(), 2.5);
+    ExpectSameTrajectory(Localize(map, d, back), Localize(map, d, options));
+  }
+}
+
+TEST(LocalizeParamsTest, RefusesParametersThatCannotWork) {
+  proto::LocalizeParams p = ToProto(LocalizeOptions{});
+  p.set_optimizer("simplex");
+  EXPECT_THROW(LocalizeOptionsFromProto(p), Error);
+  p = ToProto(LocalizeOptions{});
+  p.set_window_m(-1.0);
+  EXPECT_THROW(LocalizeOptionsFromProto(p), Error);
+  p = ToProto(LocalizeOptions{});
+  p.add_start(1.0);
+  EXPECT_THROW(LocalizeOptionsFromProto(p), Error);
+  p = ToProto(LocalizeOptions{});
+  p.clear_algorithm();
+  EXPECT_THROW(LocalizeOptionsFromProto(p), Error);
+  p = ToProto(LocalizeOptions{});
+  p.set_max_range_m(-2.0);
+  EXPECT_THROW(LocalizeOptionsFromProto(p), Error);
+}
+
+}  // namespace
+}  // namespace evoslam
