@@ -65,7 +65,9 @@ void AddJobCommands(CLI::App& app) {
   auto a = std::make_shared<JobArgs>();
   JobCommand(app, "jobs", "List the coordinator's jobs", a, false)->callback([a] {
     Connection c(a->service);
-    for (const proto::JobStatus& s : c.client.Jobs()) PrintStatus(s);
+    const auto jobs = c.client.Jobs();
+    for (const proto::JobStatus& s : jobs) PrintStatus(s);
+    if (jobs.empty()) std::printf("no jobs\n");
   });
   JobCommand(app, "status", "Show one job's state and progress", a, true)->callback([a] {
     Connection c(a->service);

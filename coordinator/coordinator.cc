@@ -275,7 +275,8 @@ proto::ClientReply Coordinator::Impl::Handle(const std::string& identity,
         break;
       case proto::ClientRequest::kJobs: {
         std::lock_guard lock(store_mutex_);
-        for (auto& s : store_.Jobs()) *reply.mutable_jobs()->add_jobs() = std::move(s);
+        proto::JobList& list = *reply.mutable_jobs();  // set even when empty: a reply
+        for (auto& s : store_.Jobs()) *list.add_jobs() = std::move(s);
         break;
       }
       case proto::ClientRequest::kWatch:
@@ -287,10 +288,11 @@ proto::ClientReply Coordinator::Impl::Handle(const std::string& identity,
       case proto::ClientRequest::kCancel:
         reply = Cancel(request.cancel().job_id());
         break;
-      case proto::ClientRequest::kWorkers:
-        for (auto& w : table_.List(Clock::now(), UnixNow()))
-          *reply.mutable_workers()->add_workers() = std::move(w);
+      case proto::ClientRequest::kWorkers: {
+        proto::WorkerList& list = *reply.mutable_workers();  // set even when empty
+        for (auto& w : table_.List(Clock::now(), UnixNow())) *list.add_workers() = std::move(w);
         break;
+      }
       case proto::ClientRequest::REQUEST_NOT_SET:
         throw ProtocolError(proto::ERROR_CODE_MALFORMED, "empty request");
     }

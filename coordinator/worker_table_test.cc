@@ -61,6 +61,14 @@ TEST(WorkerTableTest, AWorkerThatSaysReadyAgainGivesBackWhatItHeld) {
   EXPECT_FALSE(table.TaskOf("a"));
   EXPECT_EQ(table.Assign("t-2", t0), "a");  // idle once, not twice
   EXPECT_FALSE(table.Assign("t-3", t0));
+  // Saying Ready twice while idle neither renames it nor makes it idle twice.
+  table.Done("a");
+  const std::string id = table.List(t0, 0).front().worker_id();
+  EXPECT_FALSE(table.Ready("a", ReadyWith(4), t0));
+  EXPECT_EQ(table.List(t0, 0).front().worker_id(), id);
+  EXPECT_EQ(table.threads(), 4u);
+  EXPECT_EQ(table.Assign("t-3", t0), "a");
+  EXPECT_FALSE(table.Assign("t-4", t0));
 }
 
 }  // namespace

@@ -124,6 +124,7 @@ class Worker::Impl {
   bool Run(const std::stop_token& stop);
 
  private:
+  void OpenSocket();
   void Connect();
   void Send(const proto::WorkerMessage& message);
   void SendReady();
@@ -161,16 +162,26 @@ Worker::Impl::Impl(zmq::context_t& context, WorkerOptions options)
   compute_ = std::make_unique<ComputeThread>(executor_, options_.threads);
 }
 
-void Worker::Impl::Connect() {
+void Worker::Impl::OpenSocket() {
   socket_.emplace(context_, zmq::socket_type::dealer);
   socket_->set(zmq::sockopt::linger, 1000);  // time to deliver a goodbye
+  // With no connection up (the coordinator gone, or refusing our key) a send would block for
+  // ever; it gives up instead, and the heartbeats decide what to do.
+  socket_->set(zmq::sockopt::sndtimeo,
+               static_cast<int>(std::max(1.0, 1000.0 * options_.heartbeat_seconds)));
   if (options_.curve) MakeCurveClient(*socket_, *options_.curve);
   socket_->connect(options_.endpoint);
+}
+
+void Worker::Impl::Connect() {
+  OpenSocket();
   SendReady();
 }
 
 void Worker::Impl::Send(const proto::WorkerMessage& message) {
-  evoslam::Send(*socket_, Encode(message));
+  if (!evoslam::Send(*socket_, Encode(message))) {
+    spdlog::debug("could not reach the coordinator at {}; message dropped", options_.endpoint);
+  }
 }
 
 void Worker::Impl::SendReady() {
@@ -265,7 +276,7 @@ void Worker::Impl::OnMessage(const proto::CoordinatorMessage& message) {
 
 bool Worker::Impl::Run(const std::stop_token& stop) {
   Connect();
-  spdlog::log(notice_, "worker: connected to {} ({} threads, cache {})", options_.endpoint,
+  spdlog::log(notice_, "worker: connecting to {} ({} threads, cache {})", options_.endpoint,
               options_.threads > 0 ? options_.threads : omp_get_max_threads(),
               options_.cache_dir.string());
   const WireLimits limits;
@@ -322,10 +333,7 @@ bool Worker::Impl::Run(const std::stop_token& stop) {
         backoff = std::min(backoff * 2, options_.max_backoff_seconds);
         if (computing_) {
           ready_owed_ = true;
-          socket_.emplace(context_, zmq::socket_type::dealer);
-          socket_->set(zmq::sockopt::linger, 1000);
-          if (options_.curve) MakeCurveClient(*socket_, *options_.curve);
-          socket_->connect(options_.endpoint);
+          OpenSocket();
         } else {
           Connect();
         }

@@ -36,8 +36,8 @@ bool SendTo(zmq::socket_t& router, std::string_view identity, std::string_view p
   }
 }
 
-void Send(zmq::socket_t& dealer, std::string_view payload) {
-  dealer.send(zmq::buffer(payload), zmq::send_flags::none);
+bool Send(zmq::socket_t& dealer, std::string_view payload) {
+  return dealer.send(zmq::buffer(payload), zmq::send_flags::none).has_value();
 }
 
 void MakeCurveServer(zmq::socket_t& socket, const CurveServerKeys& keys, std::string_view domain) {

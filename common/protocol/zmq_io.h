@@ -23,8 +23,9 @@ std::string Text(const zmq::message_t& frame);
 
 // Sends [identity, payload] on a ROUTER socket; returns false when the peer is gone.
 bool SendTo(zmq::socket_t& router, std::string_view identity, std::string_view payload);
-// Sends one frame on a DEALER socket.
-void Send(zmq::socket_t& dealer, std::string_view payload);
+// Sends one frame on a DEALER socket; false when it could not be queued within the socket's
+// send timeout (ZMQ_SNDTIMEO), as when no connection to the peer is up.
+bool Send(zmq::socket_t& dealer, std::string_view payload);
 
 // The CURVE settings of a socket: a server with its secret key, or a client that knows the
 // server's public key and has a key pair of its own. Keys are Z85 text.

@@ -1,5 +1,6 @@
 #include "common/service/service_client.h"
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <iterator>
@@ -54,6 +55,9 @@ std::string WithMapYamlImage(const std::string& yaml, const std::string& image) 
 ServiceClient::ServiceClient(zmq::context_t& context, ClientOptions options)
     : options_(std::move(options)), socket_(context, zmq::socket_type::dealer) {
   socket_.set(zmq::sockopt::linger, 0);
+  // A send with no connection up would otherwise block for ever.
+  socket_.set(zmq::sockopt::sndtimeo,
+              static_cast<int>(std::min(1e9, 1000.0 * options_.timeout_seconds)));
   if (options_.curve) MakeCurveClient(socket_, *options_.curve);
   socket_.connect(options_.endpoint);
 }
@@ -61,7 +65,10 @@ ServiceClient::ServiceClient(zmq::context_t& context, ClientOptions options)
 std::uint64_t ServiceClient::Send(proto::ClientRequest request) {
   const std::uint64_t id = next_request_++;
   request.set_request_id(id);
-  evoslam::Send(socket_, Encode(std::move(request)));
+  if (!evoslam::Send(socket_, Encode(std::move(request)))) {
+    throw Error("cannot reach the coordinator at " + options_.endpoint + " within " +
+                std::to_string(static_cast<int>(options_.timeout_seconds)) + " s");
+  }
   return id;
 }
 
