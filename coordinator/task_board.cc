@@ -5,7 +5,8 @@
 
 namespace evoslam {
 
-TaskBoard::TaskBoard(std::function<void()> wake) : wake_(std::move(wake)) {}
+TaskBoard::TaskBoard(std::function<void()> wake, int max_attempts)
+    : wake_(std::move(wake)), max_attempts_(max_attempts) {}
 
 std::vector<proto::TaskResult> TaskBoard::RunAll(const std::string& job_id,
                                                  std::vector<proto::Task> tasks) {
@@ -72,9 +73,22 @@ bool TaskBoard::Complete(const proto::TaskResult& result) {
 }
 
 void TaskBoard::Requeue(const std::string& task_id) {
-  std::lock_guard lock(mutex_);
-  const auto it = posted_.find(task_id);
-  if (it != posted_.end() && !it->second.result) line_.push_front(task_id);
+  {
+    std::lock_guard lock(mutex_);
+    const auto it = posted_.find(task_id);
+    if (it == posted_.end() || it->second.result) return;
+    if (++it->second.attempts <= max_attempts_) {
+      line_.push_front(task_id);
+      return;
+    }
+    proto::TaskResult failed;
+    failed.set_task_id(task_id);
+    failed.mutable_error()->set_code(proto::ERROR_CODE_INTERNAL);
+    failed.mutable_error()->set_message("task " + task_id + " lost its worker " +
+                                        std::to_string(max_attempts_) + " times; giving up");
+    it->second.result = std::move(failed);
+  }
+  done_.notify_all();
 }
 
 void TaskBoard::Cancel(const std::string& job_id) {

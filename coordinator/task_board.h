@@ -28,8 +28,10 @@ class JobInterrupted : public Error {
 // idle workers, completes them, and puts back at the front those whose worker died.
 class TaskBoard {
  public:
-  // Called (from the posting thread) whenever tasks start waiting: wakes the broker.
-  explicit TaskBoard(std::function<void()> wake);
+  // `wake` is called (from the posting thread) whenever tasks start waiting: it wakes the
+  // broker. A task whose worker is lost `max_attempts` times fails its job instead of going
+  // back once more: a task that kills every worker it reaches must not kill them all.
+  explicit TaskBoard(std::function<void()> wake, int max_attempts = 3);
 
   // Gives every task an id, posts them and waits for their results, in the order of `tasks`.
   // Throws JobInterrupted when the job is cancelled or the board shut down, and Error when a
@@ -41,7 +43,8 @@ class TaskBoard {
   // Records a result. False when nobody waits for it any more (a task of a cancelled job, or
   // one already answered): the caller drops it.
   bool Complete(const proto::TaskResult& result);
-  // Puts a task that was taken, but whose worker is gone, back at the front of the line.
+  // Puts a task that was taken, but whose worker is gone, back at the front of the line, or
+  // fails it after max_attempts.
   void Requeue(const std::string& task_id);
 
   // Wakes the job's waiting thread with JobInterrupted and drops its waiting tasks.
@@ -55,9 +58,11 @@ class TaskBoard {
   struct Entry {
     proto::Task task;
     std::optional<proto::TaskResult> result;
+    int attempts = 1;
   };
 
   std::function<void()> wake_;
+  int max_attempts_;
   mutable std::mutex mutex_;
   std::condition_variable done_;
   std::uint64_t next_id_ = 1;

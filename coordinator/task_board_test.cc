@@ -75,6 +75,23 @@ TEST(TaskBoardTest, ARequeuedTaskGoesBackToTheFrontOfTheLine) {
   EXPECT_EQ(results.get().size(), 2u);
 }
 
+TEST(TaskBoardTest, ATaskThatLosesEveryWorkerItReachesFailsItsJob) {
+  TaskBoard board({}, 2);
+  auto results =
+      std::async(std::launch::async, [&] { return board.RunAll("job-1", {TaskWithScan(0)}); });
+  const proto::Task t = TakeSoon(board);
+  board.Requeue(t.task_id());  // second attempt
+  EXPECT_EQ(TakeSoon(board).task_id(), t.task_id());
+  board.Requeue(t.task_id());  // a third would be one too many
+  EXPECT_FALSE(board.Take());
+  try {
+    results.get();
+    FAIL() << "the job must fail";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("lost its worker 2 times"), std::string::npos);
+  }
+}
+
 TEST(TaskBoardTest, CancellingAJobWakesItsThreadAndDropsItsTasks) {
   TaskBoard board({});
   auto cancelled = std::async(std::launch::async, [&] {
