@@ -274,8 +274,10 @@ proto::ClientReply Coordinator::Impl::Handle(const std::string& identity,
         *reply.mutable_status() = StatusOf(request.status().job_id());
         break;
       case proto::ClientRequest::kJobs: {
+        // Set even when empty: a reply with nothing in its oneof is refused as malformed.
+        proto::JobList& jobs = *reply.mutable_jobs();
         std::lock_guard lock(store_mutex_);
-        for (auto& s : store_.Jobs()) *reply.mutable_jobs()->add_jobs() = std::move(s);
+        for (auto& s : store_.Jobs()) *jobs.add_jobs() = std::move(s);
         break;
       }
       case proto::ClientRequest::kWatch:
@@ -287,10 +289,11 @@ proto::ClientReply Coordinator::Impl::Handle(const std::string& identity,
       case proto::ClientRequest::kCancel:
         reply = Cancel(request.cancel().job_id());
         break;
-      case proto::ClientRequest::kWorkers:
-        for (auto& w : table_.List(Clock::now(), UnixNow()))
-          *reply.mutable_workers()->add_workers() = std::move(w);
+      case proto::ClientRequest::kWorkers: {
+        proto::WorkerList& workers = *reply.mutable_workers();  // set even when empty, as above
+        for (auto& w : table_.List(Clock::now(), UnixNow())) *workers.add_workers() = std::move(w);
         break;
+      }
       case proto::ClientRequest::REQUEST_NOT_SET:
         throw ProtocolError(proto::ERROR_CODE_MALFORMED, "empty request");
     }
