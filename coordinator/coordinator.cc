@@ -512,9 +512,15 @@ void Coordinator::Impl::HandleWorker(const std::string& identity,
                                      const proto::WorkerMessage& message) {
   const Clock::time_point now = Clock::now();
   if (message.has_ready()) {
-    if (auto task = table_.Ready(identity, message.ready(), now)) board_.Requeue(*task);
-    spdlog::log(notice_, "worker {} ({}, {} threads) is ready", Peer(identity),
-                message.ready().hostname().substr(0, 64), message.ready().threads());
+    // A repeated Ready is no restart (see WorkerTable::Ready). Taken for one, it would make the
+    // worker idle while a task is on its way to it: it would be sent a second, refuse it as
+    // busy, and the refusal would fail the job.
+    if (table_.Ready(identity, message.ready(), now)) {
+      spdlog::log(notice_, "worker {} ({}, {} threads) is ready", Peer(identity),
+                  message.ready().hostname().substr(0, 64), message.ready().threads());
+    } else {
+      spdlog::debug("worker {} said Ready again", Peer(identity));
+    }
     return;
   }
   if (!table_.Seen(identity, now)) {

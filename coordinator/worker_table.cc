@@ -4,9 +4,9 @@
 
 namespace evoslam {
 
-std::optional<std::string> WorkerTable::Ready(const std::string& identity,
-                                              const proto::Ready& ready, Clock::time_point now) {
-  std::optional<std::string> had = Remove(identity);
+bool WorkerTable::Ready(const std::string& identity, const proto::Ready& ready,
+                        Clock::time_point now) {
+  if (Seen(identity, now)) return false;
   Worker w;
   w.id = "w-" + std::to_string(++next_id_);
   w.hostname = ready.hostname().substr(0, 255);
@@ -14,7 +14,7 @@ std::optional<std::string> WorkerTable::Ready(const std::string& identity,
   w.last_seen = now;
   workers_.emplace(identity, std::move(w));
   idle_.push_back(identity);
-  return had;
+  return true;
 }
 
 bool WorkerTable::Seen(const std::string& identity, Clock::time_point now) {
