@@ -525,6 +525,9 @@ TEST_F(ServiceTest, AJobResumesFromItsCheckpointAfterTheCoordinatorIsKilledAndRe
     // Several scans in, so that a job started again from nothing would be seen going back.
     before = WaitForProgress(client, job_id, 5);
   }
+  // A client following the job: it asks again when the events stop.
+  ChildProcess& watch = Start(
+      {EVOSLAM_CLI, "watch", job_id, "--coordinator", c.clients, "--timeout", "2"}, "watch.log");
   ASSERT_TRUE(c.process->Kill(SIGKILL));
   ASSERT_TRUE(c.process->Wait(5s));
 
@@ -553,6 +556,10 @@ TEST_F(ServiceTest, AJobResumesFromItsCheckpointAfterTheCoordinatorIsKilledAndRe
   }
   FetchResult(client, job_id, Path("result"));
   ExpectSameTrajectory(reference, Path("result"));
+  const auto watched = watch.Wait(10s);
+  ASSERT_TRUE(watched) << "the watch did not see the job end";
+  EXPECT_TRUE(WIFEXITED(*watched) && WEXITSTATUS(*watched) == 0) << watch.Log();
+  EXPECT_NE(watch.Log().find(job_id + "  succeeded"), std::string::npos) << watch.Log();
 
   // What finished before the crash is still there, byte for byte.
   const CommandResult again = Cli({"result", earlier_id, "--out", Path("earlier-again"),
