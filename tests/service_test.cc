@@ -47,6 +47,18 @@ using Clock = std::chrono::steady_clock;
 // How long a job of these tests may take at most, on a loaded 2-core machine.
 constexpr auto kJobTimeout = 60s;
 
+// deploy/test.sh runs these tests again on a Debug build under AddressSanitizer, where a
+// localization runs some 40 times slower: there the jobs have a tenth of the scans (and the
+// load test a tenth of the jobs), to take about as long as here.
+#ifdef EVOSLAM_SANITIZED
+constexpr std::size_t kScaleDown = 10;
+#else
+constexpr std::size_t kScaleDown = 1;
+#endif
+
+// `n` scans, or fewer under the sanitizers; never under 3, so that a job still has a middle.
+constexpr std::size_t Scans(std::size_t n) { return std::max<std::size_t>(3, n / kScaleDown); }
+
 std::string ReadAll(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::stringstream s;
@@ -117,7 +129,7 @@ struct Job {
 
 // Long enough (many epochs of several islands) that a test can disturb it while it runs: a few
 // seconds on two single-threaded workers.
-const Job kLongJob{.scans = 60, .optimizer = "island", .islands = 4, .gen = 50};
+const Job kLongJob{.scans = Scans(60), .optimizer = "island", .islands = 4, .gen = 50};
 
 // The job the command line `LocalizeArgs(job, ...)` describes, built as cli/localize_command.cc
 // builds it, on datasets already uploaded.
@@ -456,7 +468,7 @@ TEST_F(ServiceTest, AnIslandJobOnTwoWorkerProcessesWritesWhatTheEmbeddedRunWrite
   auto client = Client(c.clients);
   WaitForWorkers(client, 2);
 
-  const Job job{.scans = 40, .optimizer = "island", .islands = 3};
+  const Job job{.scans = Scans(40), .optimizer = "island", .islands = 3};
   const CommandResult r = Cli(RemoteArgs(job, Path("remote"), c.clients));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   ExpectSameOutputs(Reference(job), Path("remote"));
@@ -474,7 +486,7 @@ TEST_F(ServiceTest, ASingleAlgorithmJobOnTwoWorkerProcessesWritesWhatTheEmbedded
   auto client = Client(c.clients);
   WaitForWorkers(client, 2);
 
-  const Job job{.scans = 30, .optimizer = "de"};
+  const Job job{.scans = Scans(30), .optimizer = "de"};
   const CommandResult r = Cli(RemoteArgs(job, Path("remote"), c.clients));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   ExpectSameOutputs(Reference(job), Path("remote"));
@@ -517,13 +529,13 @@ TEST_F(ServiceTest, AJobResumesFromItsCheckpointAfterTheCoordinatorIsKilledAndRe
   {
     auto client = Client(c.clients);
     WaitForWorkers(client, 2);
-    earlier_id = SubmitDetached(Job{.scans = 20}, c.clients);
+    earlier_id = SubmitDetached(Job{.scans = Scans(20)}, c.clients);
     ASSERT_EQ(WaitForEnd(client, earlier_id).state(), proto::JOB_STATE_SUCCEEDED);
     FetchResult(client, earlier_id, Path("earlier"));
 
     job_id = SubmitDetached(kLongJob, c.clients);
     // Several scans in, so that a job started again from nothing would be seen going back.
-    before = WaitForProgress(client, job_id, 5);
+    before = WaitForProgress(client, job_id, std::max<std::size_t>(1, kLongJob.scans / 12));
   }
   // A client following the job: it asks again when the events stop.
   ChildProcess& watch = Start(
@@ -629,7 +641,7 @@ TEST_F(ServiceTest, AStoppedWorkersTaskGoesToAnotherAndTheWorkerRejoinsWhenConti
   ASSERT_TRUE(other.Kill(SIGTERM));
   ASSERT_TRUE(other.Wait(10s));
   WaitForWorkers(client, 1);
-  const Job small{.scans = 10};
+  const Job small{.scans = Scans(10)};
   const CommandResult r = Cli(RemoteArgs(small, Path("after"), c.clients));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   ExpectSameTrajectory(Reference(small), Path("after"));
@@ -639,7 +651,7 @@ TEST_F(ServiceTest, AStoppedWorkersTaskGoesToAnotherAndTheWorkerRejoinsWhenConti
 // stale task in hand and a stale view of the coordinator; none of it may change the job.
 TEST_F(ServiceTest, AWorkerPausedAndResumedMidJobDoesNotChangeItsResult) {
   Job job = kLongJob;
-  job.scans = 90;
+  job.scans = Scans(90);
   const fs::path reference = Reference(job);
   const CoordinatorProcess c = StartCoordinator("coordinator");
   ChildProcess& paused = StartWorker("worker1", c.workers);
@@ -855,7 +867,7 @@ TEST_F(ServiceTest, TheClientSocketAnswersBadInputWithTheRightErrorCodes) {
   }
   EXPECT_TRUE(c.process->Alive());
 
-  const Job job{.scans = 20};
+  const Job job{.scans = Scans(20)};
   const CommandResult r = Cli(RemoteArgs(job, Path("after"), c.clients));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   ExpectSameTrajectory(Reference(job), Path("after"));
@@ -916,7 +928,7 @@ TEST_F(ServiceTest, TheWorkerSocketDropsGarbageAndTheServiceGoesOn) {
   StartWorker("worker1", c.workers);
   auto client = Client(c.clients);
   WaitForWorkers(client, 1);
-  const Job job{.scans = 20};
+  const Job job{.scans = Scans(20)};
   const CommandResult r = Cli(RemoteArgs(job, Path("after"), c.clients));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   ExpectSameTrajectory(Reference(job), Path("after"));
@@ -927,7 +939,7 @@ TEST_F(ServiceTest, TheWorkerSocketDropsGarbageAndTheServiceGoesOn) {
 // task to another, is not listened to: here the answers are failures, which would fail the job
 // if they were taken.
 TEST_F(ServiceTest, AnswersFromAWorkerThatDoesNotHoldTheTaskAreDropped) {
-  const Job job{.scans = 20};
+  const Job job{.scans = Scans(20)};
   const fs::path reference = Reference(job);
   const CoordinatorProcess c = StartCoordinator("coordinator");
   auto client = Client(c.clients);
@@ -979,7 +991,7 @@ TEST_F(ServiceTest, AnswersFromAWorkerThatDoesNotHoldTheTaskAreDropped) {
 // by a fake worker, it must not take that task back and send another to a busy worker (which
 // would refuse it, and the refusal would fail the job).
 TEST_F(ServiceTest, ARepeatedReadyDoesNotTakeBackTheTaskOnItsWayToTheWorker) {
-  const Job job{.scans = 10};
+  const Job job{.scans = Scans(10)};
   const fs::path reference = Reference(job);
   const CoordinatorProcess c = StartCoordinator("coordinator");
   auto client = Client(c.clients);
@@ -1060,7 +1072,7 @@ TEST_F(ServiceTest, WithCurveOnlyTheListedKeysAreServed) {
     return args;
   };
 
-  const Job job{.scans = 20};
+  const Job job{.scans = Scans(20)};
   std::vector<std::string> localize = LocalizeArgs(job, Path("remote"));
   localize.insert(localize.end(), as_client.begin(), as_client.end());
   const CommandResult r = Cli(localize);
@@ -1097,6 +1109,7 @@ TEST_F(ServiceTest, WithCurveOnlyTheListedKeysAreServed) {
 
 // ---- Load ----
 
+// (Twenty jobs under the sanitizers.)
 TEST_F(ServiceTest, TwoHundredJobsFromTwentyClientsEachFinishExactlyOnce) {
   // Two seeds, so that a result handed to the wrong job would show.
   const std::vector<Job> tiny = {{.scans = 3, .optimizer = "de", .gen = 5, .pop = 10, .seed = 1},
@@ -1113,7 +1126,7 @@ TEST_F(ServiceTest, TwoHundredJobsFromTwentyClientsEachFinishExactlyOnce) {
   const proto::DatasetRef log = client.Upload(Log());
   const proto::DatasetRef map = client.Upload(Map());
 
-  constexpr int kClients = 20, kJobsEach = 10;
+  constexpr int kClients = 20, kJobsEach = 10 / static_cast<int>(kScaleDown);
   std::mutex mutex;
   std::map<std::string, std::size_t> seed_of;  // job id -> index in `tiny`
   std::size_t accepted = 0;
