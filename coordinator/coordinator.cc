@@ -274,9 +274,10 @@ proto::ClientReply Coordinator::Impl::Handle(const std::string& identity,
         *reply.mutable_status() = StatusOf(request.status().job_id());
         break;
       case proto::ClientRequest::kJobs: {
+        // Set even when empty: a reply with nothing in its oneof is refused as malformed.
+        proto::JobList& jobs = *reply.mutable_jobs();
         std::lock_guard lock(store_mutex_);
-        proto::JobList& list = *reply.mutable_jobs();  // set even when empty: a reply
-        for (auto& s : store_.Jobs()) *list.add_jobs() = std::move(s);
+        for (auto& s : store_.Jobs()) *jobs.add_jobs() = std::move(s);
         break;
       }
       case proto::ClientRequest::kWatch:
@@ -289,8 +290,8 @@ proto::ClientReply Coordinator::Impl::Handle(const std::string& identity,
         reply = Cancel(request.cancel().job_id());
         break;
       case proto::ClientRequest::kWorkers: {
-        proto::WorkerList& list = *reply.mutable_workers();  // set even when empty
-        for (auto& w : table_.List(Clock::now(), UnixNow())) *list.add_workers() = std::move(w);
+        proto::WorkerList& workers = *reply.mutable_workers();  // set even when empty, as above
+        for (auto& w : table_.List(Clock::now(), UnixNow())) *workers.add_workers() = std::move(w);
         break;
       }
       case proto::ClientRequest::REQUEST_NOT_SET:
@@ -511,9 +512,15 @@ void Coordinator::Impl::HandleWorker(const std::string& identity,
                                      const proto::WorkerMessage& message) {
   const Clock::time_point now = Clock::now();
   if (message.has_ready()) {
-    if (auto task = table_.Ready(identity, message.ready(), now)) board_.Requeue(*task);
-    spdlog::log(notice_, "worker {} ({}, {} threads) is ready", Peer(identity),
-                message.ready().hostname().substr(0, 64), message.ready().threads());
+    // A repeated Ready is no restart (see WorkerTable::Ready). Taken for one, it would make the
+    // worker idle while a task is on its way to it: it would be sent a second, refuse it as
+    // busy, and the refusal would fail the job.
+    if (table_.Ready(identity, message.ready(), now)) {
+      spdlog::log(notice_, "worker {} ({}, {} threads) is ready", Peer(identity),
+                  message.ready().hostname().substr(0, 64), message.ready().threads());
+    } else {
+      spdlog::debug("worker {} said Ready again", Peer(identity));
+    }
     return;
   }
   if (!table_.Seen(identity, now)) {

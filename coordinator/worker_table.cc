@@ -1,26 +1,20 @@
 #include "coordinator/worker_table.h"
 
 #include <algorithm>
-#include <utility>
 
 namespace evoslam {
 
-std::optional<std::string> WorkerTable::Ready(const std::string& identity,
-                                              const proto::Ready& ready, Clock::time_point now) {
-  std::optional<std::string> had;
-  auto it = workers_.find(identity);
-  if (it == workers_.end()) {
-    it = workers_.emplace(identity, Worker{}).first;
-    it->second.id = "w-" + std::to_string(++next_id_);
-    idle_.push_back(identity);
-  } else if (it->second.task) {
-    had = std::exchange(it->second.task, std::nullopt);  // it restarted with a task in hand
-    idle_.push_back(identity);
-  }
-  it->second.hostname = ready.hostname().substr(0, 255);
-  it->second.threads = ready.threads();
-  it->second.last_seen = now;
-  return had;
+bool WorkerTable::Ready(const std::string& identity, const proto::Ready& ready,
+                        Clock::time_point now) {
+  if (Seen(identity, now)) return false;
+  Worker w;
+  w.id = "w-" + std::to_string(++next_id_);
+  w.hostname = ready.hostname().substr(0, 255);
+  w.threads = ready.threads();
+  w.last_seen = now;
+  workers_.emplace(identity, std::move(w));
+  idle_.push_back(identity);
+  return true;
 }
 
 bool WorkerTable::Seen(const std::string& identity, Clock::time_point now) {

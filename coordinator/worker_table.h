@@ -30,10 +30,13 @@ class WorkerTable {
     std::uint64_t tasks_done = 0;
   };
 
-  // A worker said Ready: it is known and idle from now on. Returns the task it had in hand when
-  // it was already known (it restarted), which must be requeued.
-  std::optional<std::string> Ready(const std::string& identity, const proto::Ready& ready,
-                                   Clock::time_point now);
+  // A worker said Ready: a worker not known yet is known and idle from now on; returns true then.
+  // A known worker's Ready changes nothing but when it was last heard from, and returns false: it
+  // answers a request for a new start that was sent before its first Ready came in (the
+  // coordinator asks each time it hears from a worker it does not know). Identities are per
+  // connection, so a worker that really started again comes with a new one; a task assigned to
+  // this one since its first Ready is on its way to it and must stay its own.
+  bool Ready(const std::string& identity, const proto::Ready& ready, Clock::time_point now);
   // Marks a known worker as heard from; false for a worker not known.
   bool Seen(const std::string& identity, Clock::time_point now);
   bool Known(const std::string& identity) const { return workers_.contains(identity); }
