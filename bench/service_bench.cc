@@ -35,13 +35,13 @@ constexpr int kPort = 18555;
 class ServiceBenchJob {
  public:
   ServiceBenchJob() : dir_("evoslam-service-bench") {
-    testing::ChildProcess simulate({std::string(EVOSLAM_BINARY_DIR) + "/cli/evoslam", "simulate",
-                                    "--world", "s-corridor", "--noise-uniform", "0.2", "--seed",
-                                    "1", "--out", (dir_ / "sim").string()},
-                                   dir_ / "simulate.log");
+    testing::ChildProcess simulate(
+        {std::string(EVOSLAM_BINARY_DIR) + "/cli/evoslam", "simulate", "--world", "s-corridor",
+         "--noise-uniform", "0.2", "--seed", "1", "--out", (dir_ / "sim").string()},
+        dir_ / "simulate.log");
     if (simulate.Wait(std::chrono::seconds(60)) != 0) throw Error("evoslam simulate failed");
     options_.seed = 1;
-    options_.max_scans = 2;
+    options_.max_scans = 4;
     EstimatorParams& e = options_.estimator;
     e.optimizer = ParseOptimizer("island", e.algorithm);
     e.algorithm.de.population = 8;
@@ -93,7 +93,12 @@ void BM_IslandJobLibrary(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(Localize(map, dataset, job.options()));
   omp_set_num_threads(omp_get_num_procs());
 }
-BENCHMARK(BM_IslandJobLibrary)->Arg(1)->Arg(2)->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
+BENCHMARK(BM_IslandJobLibrary)
+    ->Arg(1)
+    ->Arg(2)
+    ->Iterations(1)
+    ->UseRealTime()
+    ->Unit(benchmark::kSecond);
 
 void BM_IslandJobEmbedded(benchmark::State& state) {
   const ServiceBenchJob& job = Job();
@@ -112,10 +117,10 @@ void BM_IslandJobCluster(benchmark::State& state) {
   const std::string bin = EVOSLAM_BINARY_DIR;
   const std::filesystem::path db = job.dir() / ("bench-" + std::to_string(state.range(0)) + ".db");
   std::filesystem::remove(db);
-  testing::ChildProcess coordinator({bin + "/coordinator/evoslam-coordinator", "--db", db.string(),
-                                     "--clients", clients, "--workers", workers, "--log-level",
-                                     "warn"},
-                                    job.dir() / "coordinator.log");
+  testing::ChildProcess coordinator(
+      {bin + "/coordinator/evoslam-coordinator", "--db", db.string(), "--clients", clients,
+       "--workers", workers, "--log-level", "warn"},
+      job.dir() / "coordinator.log");
   std::vector<std::unique_ptr<testing::ChildProcess>> pool;
   for (int i = 0; i < state.range(0); ++i) {
     pool.push_back(std::make_unique<testing::ChildProcess>(
@@ -133,7 +138,12 @@ void BM_IslandJobCluster(benchmark::State& state) {
   RunJob(client, spec);  // warm-up: upload, fetch and parse
   for (auto _ : state) RunJob(client, spec);
 }
-BENCHMARK(BM_IslandJobCluster)->Arg(1)->Arg(2)->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
+BENCHMARK(BM_IslandJobCluster)
+    ->Arg(1)
+    ->Arg(2)
+    ->Iterations(1)
+    ->UseRealTime()
+    ->Unit(benchmark::kSecond);
 
 // What one evaluation of the job's fitness costs, one thread.
 void BM_IslandJobFitness(benchmark::State& state) {

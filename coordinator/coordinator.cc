@@ -1,5 +1,6 @@
 #include "coordinator/coordinator.h"
 
+#include <omp.h>
 #include <spdlog/spdlog.h>
 #include <sys/eventfd.h>
 #include <unistd.h>
@@ -625,6 +626,9 @@ void Coordinator::Impl::Touch(const std::string& job_id) {
 }
 
 void Coordinator::Impl::JobLoop(const std::stop_token& stop) {
+  // The little a job thread computes itself (a scan's final pose) is not worth a team of OpenMP
+  // threads, whose spinning would take the cores from the workers.
+  omp_set_num_threads(1);
   for (;;) {
     std::string job_id;
     {

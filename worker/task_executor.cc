@@ -26,6 +26,33 @@ proto::TaskResult Failure(const std::string& task_id, const std::string& message
   return r;
 }
 
+// A job's inputs are named by its datasets' hashes and its parameters.
+std::string InputsKey(const proto::ProblemSpec& problem) {
+  std::string key;
+  for (const proto::DatasetRef& ref : DatasetsOf(problem)) key += ref.sha256() + "/";
+  return key + problem.localize().SerializeAsString();
+}
+
+// Looks `key` up in a most-recently-used-first list, moving a hit to the front.
+template <typename T>
+std::shared_ptr<const T> Lookup(std::list<std::pair<std::string, std::shared_ptr<const T>>>& list,
+                                const std::string& key) {
+  for (auto it = list.begin(); it != list.end(); ++it) {
+    if (it->first == key) {
+      list.splice(list.begin(), list, it);
+      return it->second;
+    }
+  }
+  return nullptr;
+}
+
+template <typename T>
+void Remember(std::list<std::pair<std::string, std::shared_ptr<const T>>>& list, std::string key,
+              std::shared_ptr<const T> value) {
+  list.emplace_front(std::move(key), std::move(value));
+  if (list.size() > kInputsKept) list.pop_back();
+}
+
 }  // namespace
 
 TaskExecutor::TaskExecutor(std::shared_ptr<DatasetFiles> files) : files_(std::move(files)) {}
@@ -39,20 +66,25 @@ std::vector<proto::DatasetRef> TaskExecutor::Missing(const proto::Task& task) co
 }
 
 std::shared_ptr<const LocalizeInputs> TaskExecutor::Inputs(const proto::ProblemSpec& problem) {
-  std::string key;
-  for (const proto::DatasetRef& ref : DatasetsOf(problem)) key += ref.sha256() + "/";
-  key += problem.localize().SerializeAsString();
-  for (auto it = inputs_.begin(); it != inputs_.end(); ++it) {
-    if (it->first == key) {
-      inputs_.splice(inputs_.begin(), inputs_, it);
-      return it->second;
-    }
-  }
+  const std::string key = InputsKey(problem);
+  if (auto hit = Lookup(inputs_, key)) return hit;
   auto inputs = LoadLocalizeInputs(*files_, problem.log(), problem.map(), problem.map_image(),
                                    problem.localize());
-  inputs_.emplace_front(std::move(key), inputs);
-  if (inputs_.size() > kInputsKept) inputs_.pop_back();
+  Remember(inputs_, key, inputs);
   return inputs;
+}
+
+std::shared_ptr<const ScanProblem> TaskExecutor::ScanProblemOf(const proto::ProblemSpec& spec,
+                                                               const LocalizeInputs& inputs,
+                                                               const std::string& inputs_key) {
+  std::string key = inputs_key + "/" + std::to_string(spec.scan());
+  for (double c : spec.center()) key.append(reinterpret_cast<const char*>(&c), sizeof c);
+  if (auto hit = Lookup(problems_, key)) return hit;
+  auto problem = std::make_shared<const ScanProblem>(
+      MakeScanProblem(inputs.map, inputs.dataset, spec.scan(),
+                      Pose2(spec.center(0), spec.center(1), spec.center(2)), inputs.options));
+  Remember(problems_, std::move(key), problem);
+  return problem;
 }
 
 proto::TaskResult TaskExecutor::Run(const proto::Task& task) {
@@ -69,10 +101,8 @@ proto::TaskResult TaskExecutor::Run(const proto::Task& task) {
                   " values does not fit a log of " + std::to_string(inputs->dataset.scans.size()) +
                   " scans");
     }
-    const ScanProblem scan_problem =
-        MakeScanProblem(inputs->map, inputs->dataset, spec.scan(),
-                        Pose2(spec.center(0), spec.center(1), spec.center(2)), inputs->options);
-    const Problem& problem = *scan_problem.problem;
+    const auto scan_problem = ScanProblemOf(spec, *inputs, InputsKey(spec));
+    const Problem& problem = *scan_problem->problem;
     proto::TaskResult result;
     result.set_task_id(task.task_id());
     if (task.has_evaluate()) {

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/localization/localizer.h"
 #include "common/service/dataset_files.h"
 #include "common/service/localize_inputs.h"
 #include "evoslam/service.pb.h"
@@ -27,10 +28,15 @@ class TaskExecutor {
 
  private:
   std::shared_ptr<const LocalizeInputs> Inputs(const proto::ProblemSpec& problem);
+  // The scan's problem: built once for the many tasks of one scan's search.
+  std::shared_ptr<const ScanProblem> ScanProblemOf(const proto::ProblemSpec& problem,
+                                                   const LocalizeInputs& inputs,
+                                                   const std::string& inputs_key);
 
   std::shared_ptr<DatasetFiles> files_;
   // Most recently used first; a handful of jobs at a time is what one worker serves.
   std::list<std::pair<std::string, std::shared_ptr<const LocalizeInputs>>> inputs_;
+  std::list<std::pair<std::string, std::shared_ptr<const ScanProblem>>> problems_;
 };
 
 }  // namespace evoslam
