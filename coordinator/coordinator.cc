@@ -562,6 +562,17 @@ void Coordinator::Impl::HandleWorker(const std::string& identity,
                      result.task_id(), Peer(identity));
         break;
       }
+      if (result.has_error() && result.error().code() == proto::ERROR_CODE_QUEUE_FULL) {
+        // Busy with work we no longer count on: the task goes to another, and the worker
+        // introduces itself again once it is free.
+        table_.Remove(identity);
+        board_.Requeue(result.task_id());
+        proto::CoordinatorMessage bye;
+        bye.mutable_disconnect()->set_reason("busy with a task given to another: send Ready");
+        SendTo(workers_, identity, Encode(bye));
+        spdlog::warn("worker {} was busy; {} goes to another", Peer(identity), result.task_id());
+        break;
+      }
       table_.Done(identity);
       if (!board_.Complete(result)) {
         spdlog::debug("dropped the answer for {}: nobody waits for it", result.task_id());

@@ -220,6 +220,7 @@ void Worker::Impl::OnMessage(const proto::CoordinatorMessage& message) {
                      message.task().task_id(), task_->task_id());
         proto::WorkerMessage m;
         m.mutable_result()->set_task_id(message.task().task_id());
+        m.mutable_result()->mutable_error()->set_code(proto::ERROR_CODE_QUEUE_FULL);
         m.mutable_result()->mutable_error()->set_message("worker busy");
         Send(m);
         return;
