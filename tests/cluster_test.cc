@@ -1047,6 +1047,55 @@ TEST_F(ServiceTest, ARepeatedReadyDoesNotTakeBackTheTaskOnItsWayToTheWorker) {
   ExpectSameTrajectory(reference, Path("result"));
 }
 
+// A worker that refuses a task because it is busy (with work the coordinator no longer counts
+// on) does not fail the job: the task goes to another worker, and the busy one is asked to
+// introduce itself again.
+TEST_F(ServiceTest, ABusyWorkersRefusalSendsTheTaskElsewhere) {
+  const Job job{.scans = Scans(10)};
+  const fs::path reference = Reference(job);
+  const CoordinatorProcess c = StartCoordinator("coordinator");
+  auto client = Client(c.clients);
+  const std::string job_id = SubmitDetached(job, c.clients);
+
+  RawDealer fake(context_, c.workers);
+  proto::WorkerMessage ready;
+  ready.mutable_ready()->set_hostname("fake");
+  ready.mutable_ready()->set_threads(1);
+  fake.Send({evoslam::Encode(ready)});
+  std::optional<proto::Task> task;
+  ASSERT_TRUE(WaitUntil(
+      [&] {
+        while (auto frames = fake.Receive(10ms)) {
+          const auto m = evoslam::DecodeCoordinatorMessage(AsBytes(frames->front()));
+          if (m.has_task()) task = m.task();
+        }
+        return task.has_value();
+      },
+      10s));
+  proto::WorkerMessage busy;
+  busy.mutable_result()->set_task_id(task->task_id());
+  busy.mutable_result()->mutable_error()->set_code(proto::ERROR_CODE_QUEUE_FULL);
+  busy.mutable_result()->mutable_error()->set_message("worker busy");
+  fake.Send({evoslam::Encode(busy)});
+  // It is told to start again, and no longer counts as a worker until it does.
+  bool told = false;
+  ASSERT_TRUE(WaitUntil(
+      [&] {
+        while (auto frames = fake.Receive(10ms)) {
+          told |= evoslam::DecodeCoordinatorMessage(AsBytes(frames->front())).has_disconnect();
+        }
+        return told;
+      },
+      10s));
+  EXPECT_TRUE(client.Workers().empty());
+
+  StartWorker("worker1", c.workers);
+  const proto::JobStatus end = WaitForEnd(client, job_id);
+  ASSERT_EQ(end.state(), proto::JOB_STATE_SUCCEEDED) << Describe(end);
+  FetchResult(client, job_id, Path("result"));
+  ExpectSameTrajectory(reference, Path("result"));
+}
+
 // ---- CURVE ----
 
 TEST_F(ServiceTest, WithCurveOnlyTheListedKeysAreServed) {
