@@ -691,7 +691,7 @@ void Coordinator::Impl::RunJob(const std::string& job_id) {
       store_.SaveCheckpoint(job_id, 0, ++slot_epoch, bytes);
     };
     Clock::time_point last_progress{};
-    context.progress = [&](const proto::JobStatus& p, double) {
+    context.progress = [&](const proto::JobStatus& p) {
       const Clock::time_point now = Clock::now();
       if (now - last_progress < std::chrono::milliseconds(200) && p.done() != p.total()) return;
       last_progress = now;

@@ -120,7 +120,7 @@ std::vector<proto::ResultFile> RunLocalizeJob(const JobContext& context) {
     status.set_done(done);
     status.set_total(total);
     status.set_evaluations(evaluations);
-    if (context.progress) context.progress(status, 0.0);
+    if (context.progress) context.progress(status);
   };
   LocalizeResult result = Localize(inputs->map, inputs->dataset, inputs->options, runtime);
 

@@ -24,7 +24,7 @@ struct JobContext {
   // Saves a checkpoint (serialised); called at most every `checkpoint_seconds` seconds.
   std::function<void(const std::string& bytes)> save_checkpoint;
   double checkpoint_seconds = 0.0;
-  std::function<void(const proto::JobStatus& progress, double best)> progress;
+  std::function<void(const proto::JobStatus& progress)> progress;
   std::uint32_t worker_threads = 0;  // for the report
 };
 
