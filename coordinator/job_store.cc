@@ -158,7 +158,10 @@ bool JobStore::Finish(const std::string& job_id, proto::JobState state, const st
       .Bind(5, static_cast<std::int64_t>(proto::JOB_STATE_QUEUED))
       .Bind(6, static_cast<std::int64_t>(proto::JOB_STATE_RUNNING))
       .Run();
-  return db_.Changes() > 0;
+  if (db_.Changes() == 0) return false;
+  // A finished job is never resumed: its checkpoints would only take room.
+  db_.Prepare("DELETE FROM checkpoints WHERE job = ?1").Bind(1, JobNumber(job_id)).Run();
+  return true;
 }
 
 bool JobStore::Succeed(const std::string& job_id, const std::vector<proto::ResultFile>& files,

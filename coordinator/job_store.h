@@ -36,8 +36,9 @@ class JobStore {
 
   void SetRunning(const std::string& job_id, const std::string& phase, std::uint64_t done,
                   std::uint64_t total, std::uint64_t evaluations);
-  // Ends a job still queued or running; `error` is empty unless it failed. False when the job
-  // had already ended (it was cancelled meanwhile, say): a job ends once.
+  // Ends a job still queued or running, dropping its checkpoints; `error` is empty unless it
+  // failed. False when the job had already ended (it was cancelled meanwhile, say): a job ends
+  // once.
   bool Finish(const std::string& job_id, proto::JobState state, const std::string& error,
               double now_unix_s);
   // Ends a job as succeeded with its result files, in one transaction; false as Finish.

@@ -80,6 +80,9 @@ TEST_F(JobStoreTest, EachIslandKeepsItsLatestCheckpoint) {
   EXPECT_EQ(checkpoints[0].bytes, "island 0 epoch 2");
   EXPECT_EQ(checkpoints[1].bytes, std::string("island 1\0epoch 1", 16));  // binary-safe
   EXPECT_TRUE(store.Checkpoints(store.AddJob(LocalizeSpec(2), 2.0)).empty());
+  // A job that ends keeps no checkpoint: it is never resumed.
+  EXPECT_TRUE(store.Finish(job, proto::JOB_STATE_CANCELLED, "", 3.0));
+  EXPECT_TRUE(store.Checkpoints(job).empty());
 }
 
 TEST_F(JobStoreTest, DatasetsAndResultsRoundTrip) {
