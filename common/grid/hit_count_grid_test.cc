@@ -1,0 +1,92 @@
+#include "common/grid/hit_count_grid.h"
+
+#include <gtest/gtest.h>
+
+#include <numbers>
+#include <random>
+
+#include "common/util/error.h"
+
+namespace evoslam {
+namespace {
+
+TEST(HitCountGridTest, CountsObservationsAndKeepsTheWholeMapSumsUpToDate) {
+  HitCountGrid grid(0.1, Eigen::Vector2d(-1.0, -1.0), 20, 20);
+  EXPECT_EQ(grid.MeanPerOccupied(), 0.0);
+  EXPECT_TRUE(grid.Add({0.05, 0.05}));
+  EXPECT_TRUE(grid.Add({0.01, 0.09}));  // the same cell
+  EXPECT_TRUE(grid.Add({0.55, -0.35}));
+  EXPECT_FALSE(grid.Add({1.0, 0.0}));  // the upper bound is outside
+  EXPECT_FALSE(grid.Add({std::nan(""), 0.0}));
+  const auto cell = grid.WorldToCell({0.05, 0.05});
+  ASSERT_TRUE(cell);
+  EXPECT_EQ(*cell, Eigen::Vector2i(10, 10));
+  EXPECT_EQ(grid.count(10, 10), 2u);
+  EXPECT_EQ(grid.total(), 3u);
+  EXPECT_EQ(grid.occupied(), 2u);
+  EXPECT_DOUBLE_EQ(grid.MeanPerOccupied(), 1.5);
+  // Taking observations back, never below zero.
+  EXPECT_TRUE(grid.Add({0.55, -0.35}, -5));
+  EXPECT_EQ(grid.total(), 2u);
+  EXPECT_EQ(grid.occupied(), 1u);
+  EXPECT_THROW(grid.count(20, 0), std::out_of_range);
+}
+
+TEST(HitCountGridTest, TheRunningSumsAgreeWithAFullCountAfterRandomChanges) {
+  HitCountGrid grid(0.5, Eigen::Vector2d::Zero(), 8, 6);
+  std::mt19937 gen(7);
+  std::uniform_real_distribution<double> x(-0.5, 4.5), y(-0.5, 3.5);
+  std::uniform_int_distribution<int> delta(-2, 3);
+  for (int i = 0; i < 2000; ++i) grid.Add({x(gen), y(gen)}, delta(gen));
+  const HitCountGrid::WindowSums all = grid.Window(-5, -5, 100, 100);
+  EXPECT_EQ(all.total, grid.total());
+  EXPECT_EQ(all.occupied, grid.occupied());
+  std::uint64_t total = 0, occupied = 0;
+  for (int cy = 0; cy < 6; ++cy) {
+    for (int cx = 0; cx < 8; ++cx) {
+      total += grid.count(cx, cy);
+      occupied += grid.count(cx, cy) > 0;
+    }
+  }
+  EXPECT_EQ(total, grid.total());
+  EXPECT_EQ(occupied, grid.occupied());
+  const auto part = grid.Window(2, 1, 5, 3);
+  std::uint64_t part_total = 0;
+  for (int cy = 1; cy < 3; ++cy) {
+    for (int cx = 2; cx < 5; ++cx) part_total += grid.count(cx, cy);
+  }
+  EXPECT_EQ(part.total, part_total);
+}
+
+TEST(HitCountGridTest, AScanAddsItsReturnsWhereTheyEndAndTakesThemBackExactly) {
+  HitCountGrid grid(0.05, Eigen::Vector2d(-5.0, -5.0), 200, 200);
+  LaserScan scan;
+  scan.angle_min = -std::numbers::pi / 2;
+  scan.angle_increment = std::numbers::pi / 2;
+  scan.range_min = 0.1;
+  scan.range_max = 8.0;
+  scan.ranges = {1.0, 2.0, 8.0};  // the last is no return
+  const Pose2 pose(1.0, 1.0, std::numbers::pi / 2);
+  EXPECT_EQ(grid.AddScan(scan, pose), 0u);
+  EXPECT_EQ(grid.total(), 2u);
+  // Beam 0 points along the robot's -y, which is world +x; beam 1 along world +y.
+  const auto right = grid.WorldToCell({2.01, 1.01}), up = grid.WorldToCell({1.01, 3.01});
+  ASSERT_TRUE(right && up);
+  EXPECT_EQ(grid.count(right->x(), right->y()), 1u);
+  EXPECT_EQ(grid.count(up->x(), up->y()), 1u);
+  grid.AddScan(scan, pose, -1);
+  EXPECT_EQ(grid.total(), 0u);
+  EXPECT_EQ(grid.occupied(), 0u);
+  scan.ranges = {7.0, 0.5, 0.0};  // (4, -7) is off the grid, (4.5, 0) on it, 0 no return
+  EXPECT_EQ(grid.AddScan(scan, Pose2(4.0, 0.0, 0.0)), 1u);  // one end point beyond the grid
+}
+
+TEST(HitCountGridTest, RefusesGridsThatCannotBe) {
+  EXPECT_THROW(HitCountGrid(0.0, Eigen::Vector2d::Zero(), 1, 1), Error);
+  EXPECT_THROW(HitCountGrid(0.1, Eigen::Vector2d(std::nan(""), 0), 1, 1), Error);
+  EXPECT_THROW(HitCountGrid(0.1, Eigen::Vector2d::Zero(), 0, 1), Error);
+  EXPECT_THROW(HitCountGrid(0.1, Eigen::Vector2d::Zero(), 1 << 15, 1 << 15), Error);
+}
+
+}  // namespace
+}  // namespace evoslam
