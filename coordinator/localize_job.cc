@@ -122,6 +122,8 @@ std::vector<proto::ResultFile> RunLocalizeJob(const JobContext& context) {
     status.set_evaluations(evaluations);
     if (context.progress) context.progress(status);
   };
+  // Progress shows where the job stands from the start, a resumed job included.
+  runtime.progress(resume ? resume->next_scan : 0, total);
   LocalizeResult result = Localize(inputs->map, inputs->dataset, inputs->options, runtime);
 
   std::optional<NamedRelations> relations;
