@@ -1,0 +1,101 @@
+#include "common/slam/step_correction_problem.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "common/util/error.h"
+
+namespace evoslam {
+
+LocalFitness ParseLocalFitness(std::string_view name) {
+  if (name == "eval1") return LocalFitness::kEval1;
+  if (name == "eval2") return LocalFitness::kEval2;
+  throw Error("unknown local fitness '" + std::string(name) + "' (expected eval1 or eval2)");
+}
+
+std::string_view LocalFitnessName(LocalFitness fitness) {
+  return fitness == LocalFitness::kEval1 ? "eval1" : "eval2";
+}
+
+StepCorrectionProblem::StepCorrectionProblem(const HitCountGrid& map, const LaserScan& scan,
+                                             const Pose2& predicted,
+                                             const Eigen::Vector3d& max_error, LocalFitness fitness)
+    : map_(map), predicted_(predicted), fitness_(fitness), lower_(-max_error), upper_(max_error) {
+  if (!(max_error.array() >= 0.0).all() || !max_error.allFinite()) {
+    throw Error("local search: the maximum step error must be finite and not negative");
+  }
+  double reach = 0.0;
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    if (!scan.is_return(i)) continue;
+    const double a = scan.angle(i), r = scan.ranges[i];
+    returns_.emplace_back(r * std::cos(a), r * std::sin(a));
+    reach = std::max(reach, r);
+  }
+  // Every candidate's end points lie within this distance of the predicted ones.
+  const double margin = max_error.head<2>().norm() + reach * max_error(2) + map.resolution();
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector2d hi = -lo;
+  for (const Eigen::Vector2d& p : returns_) {
+    const Eigen::Vector2d w = predicted * p;
+    lo = lo.cwiseMin(w);
+    hi = hi.cwiseMax(w);
+  }
+  if (!returns_.empty()) {
+    const Eigen::Vector2d c0 = (lo.array() - margin - map.origin().array()) / map.resolution();
+    const Eigen::Vector2d c1 = (hi.array() + margin - map.origin().array()) / map.resolution();
+    const auto clamp = [](double v) { return static_cast<int>(std::clamp(v, -1e9, 1e9)); };
+    window_ = map.Window(clamp(std::floor(c0.x())), clamp(std::floor(c0.y())),
+                         clamp(std::floor(c1.x())) + 1, clamp(std::floor(c1.y())) + 1);
+  }
+}
+
+Pose2 StepCorrectionProblem::Corrected(const Eigen::Ref<const Eigen::VectorXd>& error) const {
+  return predicted_ * Pose2(error(0), error(1), error(2));
+}
+
+double StepCorrectionProblem::Score(const Eigen::Ref<const Eigen::VectorXd>& error) const {
+  std::vector<std::size_t> cells;
+  return Score(error, cells);
+}
+
+double StepCorrectionProblem::Score(const Eigen::Ref<const Eigen::VectorXd>& error,
+                                    std::vector<std::size_t>& cells) const {
+  const Pose2 pose = Corrected(error);
+  cells.clear();
+  for (const Eigen::Vector2d& p : returns_) {
+    if (const auto cell = map_.WorldToCell(pose * p)) {
+      cells.push_back(static_cast<std::size_t>(cell->y()) * static_cast<std::size_t>(map_.width()) +
+                      static_cast<std::size_t>(cell->x()));
+    }
+  }
+  const std::size_t inside = cells.size();
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  std::size_t fresh = 0;  // cells the scan makes occupied
+  for (const std::size_t c : cells) {
+    const int x = static_cast<int>(c % static_cast<std::size_t>(map_.width()));
+    const int y = static_cast<int>(c / static_cast<std::size_t>(map_.width()));
+    fresh += map_.count(x, y) == 0;
+  }
+  const double occupied = static_cast<double>(window_.occupied + fresh);
+  if (fitness_ == LocalFitness::kEval1) return occupied;
+  const double total = static_cast<double>(window_.total + inside);
+  return occupied > 0 ? -total / occupied : 0.0;
+}
+
+void StepCorrectionProblem::Evaluate(const Eigen::Ref<const Eigen::MatrixXd>& candidates,
+                                     std::span<double> fitness) const {
+  const Eigen::Index n = candidates.cols();
+#pragma omp parallel
+  {
+    std::vector<std::size_t> cells;
+    cells.reserve(returns_.size());
+#pragma omp for schedule(static)
+    for (Eigen::Index i = 0; i < n; ++i) {
+      fitness[static_cast<std::size_t>(i)] = Score(candidates.col(i), cells);
+    }
+  }
+}
+
+}  // namespace evoslam

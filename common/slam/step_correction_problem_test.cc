@@ -1,0 +1,108 @@
+#include "common/slam/step_correction_problem.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <numbers>
+
+#include "common/engine/algorithm_spec.h"
+#include "common/localization/test_scenes.h"
+#include "common/optim/evolve.h"
+#include "common/util/error.h"
+
+namespace evoslam {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+Eigen::Vector3d AsVector(const Pose2& p) { return {p.x(), p.y(), p.theta()}; }
+
+// A map of the box room seen from a few poses along a walk, and the next scan of the walk.
+struct Scene {
+  HitCountGrid map{0.05, Eigen::Vector2d(-1.0, -1.0), 180, 200};
+  LaserScan next;
+  Pose2 next_pose{3.1, 2.5, 0.8};
+};
+
+Scene MakeScene() {
+  Scene s;
+  const LineMap room = testing::BoxRoom();
+  for (int i = 0; i < 5; ++i) {
+    const Pose2 pose(2.5 + 0.1 * i, 2.0 + 0.08 * i, 0.55 + 0.04 * i);
+    s.map.AddScan(testing::ScanFrom(room, pose), pose);
+  }
+  s.next = testing::ScanFrom(room, s.next_pose);
+  return s;
+}
+
+class StepCorrectionTest : public ::testing::TestWithParam<LocalFitness> {};
+
+TEST_P(StepCorrectionTest, TheTrueCorrectionScoresBestAndPsoFindsIt) {
+  const Scene s = MakeScene();
+  const Pose2 odometry_error(0.12, -0.08, 3.0 * kDeg);
+  const Pose2 predicted = s.next_pose * odometry_error;
+  const StepCorrectionProblem problem(s.map, s.next, predicted,
+                                      Eigen::Vector3d(0.2, 0.2, 5.0 * kDeg), GetParam());
+  const Eigen::Vector3d truth = AsVector(odometry_error.inverse());
+  EXPECT_LT((AsVector(problem.Corrected(truth)) - AsVector(s.next_pose)).norm(), 1e-12);
+  const double at_truth = problem.Score(truth);
+  EXPECT_LT(at_truth, problem.Score(Eigen::Vector3d::Zero()));
+  for (const Eigen::Vector3d& off :
+       {Eigen::Vector3d(0.1, 0, 0), Eigen::Vector3d(0, -0.1, 0), Eigen::Vector3d(0, 0, 2 * kDeg)}) {
+    EXPECT_LT(at_truth, problem.Score(truth + off)) << off.transpose();
+  }
+  // Evaluate agrees with Score, whatever the batch.
+  Eigen::MatrixXd batch(3, 2);
+  batch << truth, Eigen::Vector3d::Zero();
+  double f[2];
+  problem.Evaluate(batch, f);
+  EXPECT_EQ(f[0], at_truth);
+
+  // 002's local search: PSO with 10 particles, c1 = c2 = 2.
+  AlgorithmSpec spec;
+  spec.kind = AlgorithmKind::kPso;
+  spec.pso.particles = 10;
+  spec.pso.c1 = spec.pso.c2 = 2.0;
+  spec.pso.inertia = 0.7;
+  const std::unique_ptr<Algorithm> pso = MakeAlgorithm(spec);
+  StopCriteria stop;
+  stop.max_generations = 60;
+  Rng rng(3);
+  const OptimResult r = Minimize(problem, *pso, stop, rng);
+  const Pose2 found = problem.Corrected(r.best);
+  EXPECT_LT((found.translation() - s.next_pose.translation()).norm(), 0.05);
+  EXPECT_LT(std::abs(WrapAngle(found.theta() - s.next_pose.theta())), 1.0 * kDeg);
+}
+
+INSTANTIATE_TEST_SUITE_P(BothScores, StepCorrectionTest,
+                         ::testing::Values(LocalFitness::kEval1, LocalFitness::kEval2),
+                         [](const auto& info) {
+                           return std::string(LocalFitnessName(info.param));
+                         });
+
+TEST(StepCorrectionProblemTest, Eval1CountsTheCellsTheScanLeavesOccupied) {
+  HitCountGrid map(1.0, Eigen::Vector2d(-10, -10), 20, 20);
+  map.Add({3.5, 0.5});    // where the first beam ends
+  map.Add({-8.5, -8.5});  // far away: outside the part being updated
+  LaserScan scan;
+  scan.angle_min = 0.0;
+  scan.angle_increment = std::numbers::pi / 2;
+  scan.range_min = 0.1;
+  scan.range_max = 10.0;
+  scan.ranges = {3.0, 3.0, 3.0};  // ends at (3, 0), (0, 3), (-3, 0) seen from (0.5, 0.5)
+  const StepCorrectionProblem eval1(map, scan, Pose2(0.5, 0.5, 0.0), Eigen::Vector3d::Zero(),
+                                    LocalFitness::kEval1);
+  // One cell already occupied, two new.
+  EXPECT_EQ(eval1.Score(Eigen::Vector3d::Zero()), 3.0);
+  const StepCorrectionProblem eval2(map, scan, Pose2(0.5, 0.5, 0.0), Eigen::Vector3d::Zero(),
+                                    LocalFitness::kEval2);
+  // Four observations over three cells.
+  EXPECT_DOUBLE_EQ(eval2.Score(Eigen::Vector3d::Zero()), -4.0 / 3.0);
+  EXPECT_THROW(
+      StepCorrectionProblem(map, scan, Pose2(), Eigen::Vector3d(-1, 0, 0), LocalFitness::kEval1),
+      Error);
+  EXPECT_THROW(ParseLocalFitness("eval3"), Error);
+}
+
+}  // namespace
+}  // namespace evoslam
