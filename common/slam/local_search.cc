@@ -1,0 +1,76 @@
+#include "common/slam/local_search.h"
+
+#include <cmath>
+#include <limits>
+
+#include "common/optim/evolve.h"
+#include "common/util/error.h"
+#include "common/util/random.h"
+
+namespace evoslam {
+
+void ValidateLocalSearchParams(const LocalSearchParams& p) {
+  if (!(p.max_error.array() >= 0.0).all() || !p.max_error.allFinite())
+    throw Error("local search: the maximum step error must be finite and not negative");
+  if (p.particles < 2) throw Error("local search: at least 2 particles are needed");
+  if (p.iterations == 0) throw Error("local search: at least 1 iteration is needed");
+  if (!(p.resolution > 0.0)) throw Error("local search: the map resolution must be positive");
+  if (!(p.margin >= 0.0)) throw Error("local search: the map margin must not be negative");
+}
+
+HitCountGrid EmptyMapFor(const Dataset& dataset, const LocalSearchParams& params) {
+  if (dataset.scans.empty()) throw Error(dataset.source + ": the log has no laser scans");
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector2d hi = -lo;
+  double reach = 0.0;
+  for (const LaserScan& s : dataset.scans) {
+    lo = lo.cwiseMin(s.odometry.translation());
+    hi = hi.cwiseMax(s.odometry.translation());
+    reach = std::max(reach, s.range_max);
+  }
+  const double pad = reach + params.margin;
+  const Eigen::Vector2d origin = lo.array() - pad;
+  const Eigen::Vector2d size = (hi - lo).array() + 2 * pad;
+  return HitCountGrid(params.resolution, origin,
+                      static_cast<int>(std::ceil(size.x() / params.resolution)) + 1,
+                      static_cast<int>(std::ceil(size.y() / params.resolution)) + 1);
+}
+
+LocalSearchResult RunLocalSearch(const Dataset& dataset, const LocalSearchParams& params,
+                                 std::uint64_t seed, HitCountGrid& map,
+                                 const std::function<void(std::size_t, std::size_t)>& progress) {
+  ValidateLocalSearchParams(params);
+  if (dataset.scans.empty()) throw Error(dataset.source + ": the log has no laser scans");
+  PsoParams pso;
+  pso.particles = params.particles;
+  pso.inertia = params.inertia;
+  pso.c1 = params.c1;
+  pso.c2 = params.c2;
+  StopCriteria stop;
+  stop.max_generations = params.iterations;
+  const Rng root(seed);
+
+  LocalSearchResult result;
+  const std::size_t n = dataset.scans.size();
+  result.trajectory.reserve(n);
+  Pose2 pose = dataset.scans.front().odometry;
+  for (std::size_t i = 0; i < n; ++i) {
+    const LaserScan& scan = dataset.scans[i];
+    if (i > 0) {
+      const Pose2 step = dataset.scans[i - 1].odometry.inverse() * scan.odometry;
+      const Pose2 predicted = pose * step;
+      const StepCorrectionProblem problem(map, scan, predicted, params.max_error, params.fitness);
+      ParticleSwarm swarm(pso);
+      Rng rng = root.Stream(i);
+      const OptimResult r = Minimize(problem, swarm, stop, rng);
+      pose = problem.Corrected(r.best);
+      result.evaluations += r.evaluations;
+    }
+    map.AddScan(scan, pose);
+    result.trajectory.push_back({scan.timestamp, pose});
+    if (progress) progress(i + 1, n);
+  }
+  return result;
+}
+
+}  // namespace evoslam

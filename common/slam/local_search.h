@@ -1,0 +1,54 @@
+#ifndef EVOSLAM_COMMON_SLAM_LOCAL_SEARCH_H_
+#define EVOSLAM_COMMON_SLAM_LOCAL_SEARCH_H_
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "common/grid/hit_count_grid.h"
+#include "common/io/trajectory_io.h"
+#include "common/optim/particle_swarm.h"
+#include "common/sensor/dataset.h"
+#include "common/slam/step_correction_problem.h"
+
+namespace evoslam {
+
+// Paper 002's local search (§3.1): at every step, PSO over the odometry error of the last step.
+struct LocalSearchParams {
+  LocalFitness fitness = LocalFitness::kEval1;
+  // The cube the error is searched in: +-x, +-y (m), +-theta (rad) per step. 002 gives no size;
+  // these cover a wheeled robot's error over one step of a few tens of centimetres.
+  Eigen::Vector3d max_error{0.1, 0.1, 0.05};
+  std::size_t particles = 10;  // 002
+  std::size_t iterations = 30;
+  double inertia = 0.7;
+  double c1 = 2.0, c2 = 2.0;  // 002
+  double resolution = 0.05;   // map cell, m
+  // The map covers the odometry's path plus the laser's range plus this margin, so that drift
+  // the search corrects stays on it.
+  double margin = 10.0;
+};
+
+void ValidateLocalSearchParams(const LocalSearchParams& params);
+
+// The map a log's scans can reach: the odometry's path widened by the laser's range and
+// params.margin.
+HitCountGrid EmptyMapFor(const Dataset& dataset, const LocalSearchParams& params);
+
+struct LocalSearchResult {
+  std::vector<StampedPose> trajectory;  // one pose per scan, the laser's
+  std::size_t evaluations = 0;
+};
+
+// Runs the local search over a whole log, inserting each scan into `map` at its corrected pose.
+// The first scan keeps its odometry pose. Scan i's search draws from random stream i of the
+// seed. `progress(done, total)` after every scan.
+LocalSearchResult RunLocalSearch(
+    const Dataset& dataset, const LocalSearchParams& params, std::uint64_t seed, HitCountGrid& map,
+    const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+}  // namespace evoslam
+
+#endif  // EVOSLAM_COMMON_SLAM_LOCAL_SEARCH_H_
