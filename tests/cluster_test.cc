@@ -428,6 +428,40 @@ class ServiceTest : public ::testing::Test {
     }
   }
 
+  // Waits for the job to end and checks it succeeded with the reference's trajectory.
+  void ExpectSucceedsLike(evoslam::ServiceClient& client, const std::string& job_id,
+                          const fs::path& reference) {
+    const proto::JobStatus end = WaitForEnd(client, job_id);
+    ASSERT_EQ(end.state(), proto::JOB_STATE_SUCCEEDED) << Describe(end);
+    FetchResult(client, job_id, Path("result"));
+    ExpectSameTrajectory(reference, Path("result"));
+  }
+
+  // A raw DEALER on the worker socket that has said Ready: a worker the test plays itself.
+  std::unique_ptr<RawDealer> FakeWorker(const std::string& endpoint) {
+    auto fake = std::make_unique<RawDealer>(context_, endpoint);
+    proto::WorkerMessage ready;
+    ready.mutable_ready()->set_hostname("fake");
+    ready.mutable_ready()->set_threads(1);
+    fake->Send({evoslam::Encode(ready)});
+    return fake;
+  }
+
+  // The first task the coordinator sends `fake` within 10 s.
+  static std::optional<proto::Task> AwaitTask(RawDealer& fake) {
+    std::optional<proto::Task> task;
+    WaitUntil(
+        [&] {
+          while (auto frames = fake.Receive(10ms)) {
+            const auto m = evoslam::DecodeCoordinatorMessage(AsBytes(frames->front()));
+            if (m.has_task()) task = m.task();
+          }
+          return task.has_value();
+        },
+        10s);
+    return task;
+  }
+
   static void ExpectSameTrajectory(const fs::path& expected, const fs::path& actual) {
     for (const char* name : {"trajectory.txt", "trajectory.tum"}) {
       ASSERT_TRUE(fs::exists(actual / name)) << actual / name;
@@ -611,10 +645,7 @@ TEST_F(ServiceTest, AStoppedWorkersTaskGoesToAnotherAndTheWorkerRejoinsWhenConti
       },
       10s));
   const std::string task = lost[2];
-  const proto::JobStatus end = WaitForEnd(client, job_id);
-  ASSERT_EQ(end.state(), proto::JOB_STATE_SUCCEEDED) << Describe(end);
-  FetchResult(client, job_id, Path("result"));
-  ExpectSameTrajectory(reference, Path("result"));
+  ExpectSucceedsLike(client, job_id, reference);
   EXPECT_EQ(client.Workers().size(), 1u);
 
   ASSERT_TRUE(paused.Kill(SIGCONT));
@@ -670,10 +701,7 @@ TEST_F(ServiceTest, AWorkerPausedAndResumedMidJobDoesNotChangeItsResult) {
     ASSERT_TRUE(WaitUntil([&] { return client.Workers().size() == 2; }, 10s));
   }
   EXPECT_GE(rounds, 2u) << "the job ended too soon to be disturbed";
-  const proto::JobStatus end = WaitForEnd(client, job_id);
-  ASSERT_EQ(end.state(), proto::JOB_STATE_SUCCEEDED) << Describe(end);
-  FetchResult(client, job_id, Path("result"));
-  ExpectSameTrajectory(reference, Path("result"));
+  ExpectSucceedsLike(client, job_id, reference);
 }
 
 TEST_F(ServiceTest, AWorkerStoppedWithSigtermFinishesItsTaskAndLeavesCleanly) {
@@ -696,10 +724,7 @@ TEST_F(ServiceTest, AWorkerStoppedWithSigtermFinishesItsTaskAndLeavesCleanly) {
   EXPECT_TRUE(WaitUntil(
       [&] { return c.process->Log().find("left: worker stopping") != std::string::npos; }, 5s));
 
-  const proto::JobStatus end = WaitForEnd(client, job_id);
-  ASSERT_EQ(end.state(), proto::JOB_STATE_SUCCEEDED) << Describe(end);
-  FetchResult(client, job_id, Path("result"));
-  ExpectSameTrajectory(reference, Path("result"));
+  ExpectSucceedsLike(client, job_id, reference);
   EXPECT_EQ(client.Workers().size(), 1u);
 }
 
@@ -730,10 +755,7 @@ TEST_F(ServiceTest, AWorkerStoppedWithSigtermAndNoGraceHandsItsTaskBack) {
         },
         5s));
   }
-  const proto::JobStatus end = WaitForEnd(client, job_id);
-  ASSERT_EQ(end.state(), proto::JOB_STATE_SUCCEEDED) << Describe(end);
-  FetchResult(client, job_id, Path("result"));
-  ExpectSameTrajectory(reference, Path("result"));
+  ExpectSucceedsLike(client, job_id, reference);
 }
 
 // ---- Bad input ----
@@ -945,22 +967,10 @@ TEST_F(ServiceTest, AnswersFromAWorkerThatDoesNotHoldTheTaskAreDropped) {
   auto client = Client(c.clients);
   const std::string job_id = SubmitDetached(job, c.clients);
 
-  RawDealer fake(context_, c.workers);
-  proto::WorkerMessage ready;
-  ready.mutable_ready()->set_hostname("fake");
-  ready.mutable_ready()->set_threads(1);
-  fake.Send({evoslam::Encode(ready)});
-  std::optional<proto::Task> task;
-  ASSERT_TRUE(WaitUntil(
-      [&] {
-        while (auto frames = fake.Receive(10ms)) {
-          const std::string& f = frames->front();
-          const auto m = evoslam::DecodeCoordinatorMessage(AsBytes(f));
-          if (m.has_task()) task = m.task();
-        }
-        return task.has_value();
-      },
-      10s));
+  const auto fake_worker = FakeWorker(c.workers);
+  RawDealer& fake = *fake_worker;
+  const std::optional<proto::Task> task = AwaitTask(fake);
+  ASSERT_TRUE(task);
   const auto failure = [](const std::string& task_id) {
     proto::WorkerMessage m;
     m.mutable_result()->set_task_id(task_id);
@@ -979,10 +989,7 @@ TEST_F(ServiceTest, AnswersFromAWorkerThatDoesNotHoldTheTaskAreDropped) {
   EXPECT_FALSE(Finished(client.Status(job_id))) << Describe(client.Status(job_id));
 
   StartWorker("worker1", c.workers);
-  const proto::JobStatus end = WaitForEnd(client, job_id);
-  ASSERT_EQ(end.state(), proto::JOB_STATE_SUCCEEDED) << Describe(end);
-  FetchResult(client, job_id, Path("result"));
-  ExpectSameTrajectory(reference, Path("result"));
+  ExpectSucceedsLike(client, job_id, reference);
 }
 
 // A worker dropped for silence and then woken answers two requests for a new start with two
@@ -1041,10 +1048,7 @@ TEST_F(ServiceTest, ARepeatedReadyDoesNotTakeBackTheTaskOnItsWayToTheWorker) {
   bye.mutable_disconnect()->set_handed_back_task_id(first[0].task_id());
   fake.Send({evoslam::Encode(bye)});
   StartWorker("worker1", c.workers);
-  const proto::JobStatus end = WaitForEnd(client, job_id);
-  ASSERT_EQ(end.state(), proto::JOB_STATE_SUCCEEDED) << Describe(end);
-  FetchResult(client, job_id, Path("result"));
-  ExpectSameTrajectory(reference, Path("result"));
+  ExpectSucceedsLike(client, job_id, reference);
 }
 
 // A worker that refuses a task because it is busy (with work the coordinator no longer counts
@@ -1057,21 +1061,10 @@ TEST_F(ServiceTest, ABusyWorkersRefusalSendsTheTaskElsewhere) {
   auto client = Client(c.clients);
   const std::string job_id = SubmitDetached(job, c.clients);
 
-  RawDealer fake(context_, c.workers);
-  proto::WorkerMessage ready;
-  ready.mutable_ready()->set_hostname("fake");
-  ready.mutable_ready()->set_threads(1);
-  fake.Send({evoslam::Encode(ready)});
-  std::optional<proto::Task> task;
-  ASSERT_TRUE(WaitUntil(
-      [&] {
-        while (auto frames = fake.Receive(10ms)) {
-          const auto m = evoslam::DecodeCoordinatorMessage(AsBytes(frames->front()));
-          if (m.has_task()) task = m.task();
-        }
-        return task.has_value();
-      },
-      10s));
+  const auto fake_worker = FakeWorker(c.workers);
+  RawDealer& fake = *fake_worker;
+  const std::optional<proto::Task> task = AwaitTask(fake);
+  ASSERT_TRUE(task);
   proto::WorkerMessage busy;
   busy.mutable_result()->set_task_id(task->task_id());
   busy.mutable_result()->mutable_error()->set_code(proto::ERROR_CODE_QUEUE_FULL);
@@ -1090,10 +1083,7 @@ TEST_F(ServiceTest, ABusyWorkersRefusalSendsTheTaskElsewhere) {
   EXPECT_TRUE(client.Workers().empty());
 
   StartWorker("worker1", c.workers);
-  const proto::JobStatus end = WaitForEnd(client, job_id);
-  ASSERT_EQ(end.state(), proto::JOB_STATE_SUCCEEDED) << Describe(end);
-  FetchResult(client, job_id, Path("result"));
-  ExpectSameTrajectory(reference, Path("result"));
+  ExpectSucceedsLike(client, job_id, reference);
 }
 
 // ---- CURVE ----
