@@ -1,0 +1,179 @@
+#include "common/slam/global_search_problem.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "common/optim/pareto.h"
+#include "common/util/error.h"
+
+namespace evoslam {
+namespace {
+
+constexpr std::size_t kGenesPerColumn = 6;  // (error, mean) for x, y and theta
+
+}  // namespace
+
+void ValidateGlobalSearchParams(const GlobalSearchParams& p) {
+  if (p.partitions == 0) throw Error("global search: at least one partition is needed");
+  if (!(p.max_error.array() >= 0.0).all() || !p.max_error.allFinite())
+    throw Error("global search: the maximum partition error must be finite and not negative");
+  if (!(p.sigma.array() > 0.0).all() || !p.sigma.allFinite())
+    throw Error("global search: the Gaussian widths must be positive");
+  if (!(p.w1 >= 0.0) || !(p.w2 >= 0.0)) throw Error("global search: weights must be >= 0");
+}
+
+GlobalSearchProblem::GlobalSearchProblem(std::span<const LaserScan> scans,
+                                         std::span<const Pose2> poses, std::size_t first,
+                                         std::size_t last, const HitCountGrid& base,
+                                         const GlobalSearchParams& params,
+                                         std::optional<LoopConstraint> loop)
+    : base_(base), params_(params), loop_(loop), first_(first), last_(last) {
+  ValidateGlobalSearchParams(params);
+  if (!(first < last) || last > scans.size() || last > poses.size()) {
+    throw Error("global search: scans [" + std::to_string(first) + ", " + std::to_string(last) +
+                ") do not fit a log of " + std::to_string(scans.size()) + " scans and " +
+                std::to_string(poses.size()) + " poses");
+  }
+  if (loop && (loop->earlier >= loop->later || loop->later < first || loop->later >= last)) {
+    throw Error("global search: the loop must end inside the scans searched, after it starts");
+  }
+  steps_begin_ = std::max<std::size_t>(first, 1);
+  anchor_ = poses[steps_begin_ - 1];
+  for (std::size_t j = steps_begin_; j < last; ++j)
+    increments_.push_back(poses[j - 1].inverse() * poses[j]);
+  const std::size_t steps = increments_.size();
+  const std::size_t partitions = std::max<std::size_t>(1, std::min(params.partitions, steps));
+  for (std::size_t i = 0; i <= partitions; ++i) bounds_.push_back(i * steps / partitions);
+  for (std::size_t k = first; k < last; ++k) {
+    const LaserScan& s = scans[k];
+    std::vector<Eigen::Vector2d> points;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      if (!s.is_return(i)) continue;
+      const double a = s.angle(i), r = s.ranges[i];
+      points.emplace_back(r * std::cos(a), r * std::sin(a));
+    }
+    returns_.push_back(std::move(points));
+  }
+  if (loop && loop->earlier < first) loop_earlier_pose_ = poses[loop->earlier];
+  const auto n = static_cast<Eigen::Index>(partitions * kGenesPerColumn);
+  lower_.resize(n);
+  upper_.resize(n);
+  for (std::size_t i = 0; i < partitions; ++i) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const auto g = static_cast<Eigen::Index>(i * kGenesPerColumn + 2 * axis);
+      lower_(g) = -params.max_error(axis);
+      upper_(g) = params.max_error(axis);
+      lower_(g + 1) = 0.0;
+      upper_(g + 1) = 1.0;
+    }
+  }
+}
+
+Eigen::VectorXd GlobalSearchProblem::Identity() const {
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(lower_.size());
+  for (Eigen::Index g = 1; g < x.size(); g += 2) x(g) = 0.5;
+  return x;
+}
+
+std::vector<Pose2> GlobalSearchProblem::Apply(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  std::vector<Pose2> out;
+  out.reserve(last_ - first_);
+  if (first_ < steps_begin_) out.push_back(anchor_);  // scan 0 stays where it is
+  Pose2 pose = anchor_;
+  for (std::size_t i = 0; i + 1 < bounds_.size(); ++i) {
+    const std::size_t b = bounds_[i], e = bounds_[i + 1];
+    const double n = static_cast<double>(e - b);
+    Eigen::Vector3d weight_sum = Eigen::Vector3d::Zero();
+    // Eq. 5's Gaussian over the partition, normalised: the partition's error is spread, not
+    // multiplied.
+    const auto weight = [&](std::size_t j, int axis) {
+      const double t = (static_cast<double>(j - b) + 0.5) / n;
+      const double mu = x(static_cast<Eigen::Index>(i * kGenesPerColumn + 2 * axis + 1));
+      const double d = (t - mu) / params_.sigma(axis);
+      return std::exp(-0.5 * d * d);
+    };
+    for (std::size_t j = b; j < e; ++j) {
+      for (int axis = 0; axis < 3; ++axis) weight_sum(axis) += weight(j, axis);
+    }
+    for (std::size_t j = b; j < e; ++j) {
+      Eigen::Vector3d error;
+      for (int axis = 0; axis < 3; ++axis) {
+        const double delta = x(static_cast<Eigen::Index>(i * kGenesPerColumn + 2 * axis));
+        error(axis) = weight_sum(axis) > 0 ? delta * weight(j, axis) / weight_sum(axis) : 0.0;
+      }
+      pose = pose * (increments_[j] * Pose2(error(0), error(1), error(2)));
+      out.push_back(pose);
+    }
+  }
+  return out;
+}
+
+void GlobalSearchProblem::Score(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                std::vector<std::size_t>& cells, double* fitness) const {
+  const std::vector<Pose2> poses = Apply(x);
+  const auto width = static_cast<std::size_t>(base_.width());
+  cells.clear();
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    for (const Eigen::Vector2d& p : returns_[k]) {
+      if (const auto c = base_.WorldToCell(poses[k] * p)) {
+        cells.push_back(static_cast<std::size_t>(c->y()) * width +
+                        static_cast<std::size_t>(c->x()));
+      }
+    }
+  }
+  const std::size_t inside = cells.size();
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  std::size_t fresh = 0;
+  for (const std::size_t c : cells) {
+    fresh += base_.count(static_cast<int>(c % width), static_cast<int>(c / width)) == 0;
+  }
+  const double occupied = static_cast<double>(base_.occupied() + fresh);
+  fitness[0] = occupied > 0 ? -static_cast<double>(base_.total() + inside) / occupied : 0.0;
+
+  // Eq. 7: path cells on obstacles, and the loop's two observations of one place.
+  double conflicts = 0.0;
+  for (const Pose2& pose : poses) {
+    const auto c = base_.WorldToCell(pose.translation());
+    if (!c) continue;
+    const std::size_t index =
+        static_cast<std::size_t>(c->y()) * width + static_cast<std::size_t>(c->x());
+    conflicts +=
+        base_.count(c->x(), c->y()) > 0 || std::binary_search(cells.begin(), cells.end(), index);
+  }
+  double distance = 0.0;
+  if (loop_) {
+    const Pose2 earlier =
+        loop_->earlier < first_ ? loop_earlier_pose_ : poses[loop_->earlier - first_];
+    const Pose2 expected = earlier * loop_->relative;
+    distance = (poses[loop_->later - first_].translation() - expected.translation()).norm();
+  }
+  fitness[1] = params_.w1 * conflicts + params_.w2 * distance;
+}
+
+void GlobalSearchProblem::Evaluate(const Eigen::Ref<const Eigen::MatrixXd>& candidates,
+                                   std::span<double> fitness) const {
+  const Eigen::Index n = candidates.cols();
+#pragma omp parallel
+  {
+    std::vector<std::size_t> cells;
+#pragma omp for schedule(dynamic, 1)
+    for (Eigen::Index i = 0; i < n; ++i) {
+      Score(candidates.col(i), cells, fitness.data() + 2 * static_cast<std::size_t>(i));
+    }
+  }
+}
+
+std::size_t PickGlobalSolution(const Eigen::MatrixXd& fitness) {
+  const std::vector<std::size_t> front = FirstFront(fitness);
+  if (front.empty()) throw Error("global search: an empty population has no solution");
+  return *std::min_element(front.begin(), front.end(), [&](std::size_t a, std::size_t b) {
+    const auto ia = static_cast<Eigen::Index>(a), ib = static_cast<Eigen::Index>(b);
+    return fitness(1, ia) != fitness(1, ib) ? fitness(1, ia) < fitness(1, ib)
+                                            : fitness(0, ia) < fitness(0, ib);
+  });
+}
+
+}  // namespace evoslam

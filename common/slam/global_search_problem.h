@@ -1,0 +1,89 @@
+#ifndef EVOSLAM_COMMON_SLAM_GLOBAL_SEARCH_PROBLEM_H_
+#define EVOSLAM_COMMON_SLAM_GLOBAL_SEARCH_PROBLEM_H_
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "common/grid/hit_count_grid.h"
+#include "common/optim/problem.h"
+#include "common/sensor/laser_scan.h"
+#include "common/transform/pose2.h"
+
+namespace evoslam {
+
+// Paper 002's global search (§3.2) settings.
+struct GlobalSearchParams {
+  std::size_t partitions = 8;  // L
+  // Bounds of a partition's total error per axis (m, m, rad).
+  Eigen::Vector3d max_error{1.0, 1.0, 0.3};
+  // The Gaussian of eq. 5 per axis, as a fraction of a partition's length.
+  Eigen::Vector3d sigma{0.3, 0.3, 0.3};
+  double w1 = 0.5;  // eq. 7: weight of path cells on obstacles (002 Fig. 11: 0.5)
+  double w2 = 0.5;  // eq. 7: weight of the distance between two observations of one place
+};
+
+void ValidateGlobalSearchParams(const GlobalSearchParams& params);
+
+// A place seen twice: scan `later` should sit at `relative` in scan `earlier`'s frame.
+struct LoopConstraint {
+  std::size_t earlier = 0;
+  std::size_t later = 0;
+  Pose2 relative;
+};
+
+// The global search's problem over the poses of scans [first, last). The steps between them
+// are split into L partitions; a candidate holds per partition and axis an error and the mean of
+// a Gaussian (genes: L columns of (dx, mu_x, dy, mu_y, dtheta, mu_theta)), the error being spread
+// over the partition's steps with the Gaussian's weights (eq. 5, normalised so that a
+// partition's error is its total). Two objectives, both minimised: eq. 6 negated (the mean
+// number of observations per occupied cell of the whole map, the scans of [first, last)
+// re-inserted at their corrected poses into `base`, which holds every other scan), and eq. 7
+// negated (w1 x the corrected poses that stand on an occupied cell + w2 x how far the loop's
+// later pose lands from where the constraint puts it; no constraint, no second term).
+class GlobalSearchProblem : public Problem {
+ public:
+  // `poses` holds the current poses of scans [0, last). The pose of scan max(first, 1) - 1 is
+  // the anchor the corrected steps start from.
+  GlobalSearchProblem(std::span<const LaserScan> scans, std::span<const Pose2> poses,
+                      std::size_t first, std::size_t last, const HitCountGrid& base,
+                      const GlobalSearchParams& params, std::optional<LoopConstraint> loop);
+
+  const Eigen::VectorXd& lower() const override { return lower_; }
+  const Eigen::VectorXd& upper() const override { return upper_; }
+  std::size_t objectives() const override { return 2; }
+  void Evaluate(const Eigen::Ref<const Eigen::MatrixXd>& candidates,
+                std::span<double> fitness) const override;
+
+  // The corrected poses of scans [first, last) for a candidate.
+  std::vector<Pose2> Apply(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  // The candidate that changes nothing (all errors zero, means centred).
+  Eigen::VectorXd Identity() const;
+
+ private:
+  void Score(const Eigen::Ref<const Eigen::VectorXd>& x, std::vector<std::size_t>& cells,
+             double* fitness) const;
+
+  const HitCountGrid& base_;
+  GlobalSearchParams params_;
+  std::optional<LoopConstraint> loop_;
+  std::size_t first_, last_;
+  std::size_t steps_begin_;          // the first corrected step
+  Pose2 anchor_;                     // the pose before steps_begin_
+  std::vector<Pose2> increments_;    // step j's motion, j in [steps_begin_, last)
+  std::vector<std::size_t> bounds_;  // partition i covers steps [bounds_[i], bounds_[i + 1])
+  std::vector<std::vector<Eigen::Vector2d>> returns_;  // scan first + k's end points, laser frame
+  Pose2 loop_earlier_pose_;  // the loop's earlier pose, when it lies before first
+  Eigen::VectorXd lower_, upper_;
+};
+
+// The global search's choice among a final population (objectives x n): the individual of the
+// first Pareto front with the lowest second objective (the loop closed, the path free), ties
+// going to the better first.
+std::size_t PickGlobalSolution(const Eigen::MatrixXd& fitness);
+
+}  // namespace evoslam
+
+#endif  // EVOSLAM_COMMON_SLAM_GLOBAL_SEARCH_PROBLEM_H_
