@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 
@@ -139,6 +140,41 @@ TEST_F(CliTest, MalformedLogNamesFileAndLine) {
   const Result lenient = RunCli("info --lenient " + Path("bad.clf"));
   EXPECT_EQ(lenient.status, 0) << lenient.output;
   EXPECT_NE(lenient.output.find("skipped 1"), std::string::npos) << lenient.output;
+}
+
+// A map_server map written by one run is a map for the next, wherever its YAML lives: the
+// job carries the YAML and its image to the service, which puts them side by side again.
+TEST_F(CliTest, AGridWrittenByOneRunIsTheMapOfTheNext) {
+  ASSERT_EQ(
+      RunCli("simulate --world s-corridor --max-scans 12 --seed 2 --out " + Path("sim")).status, 0);
+  const std::string log = " --log " + Path("sim/log.clf") + " --max-scans 12";
+  const Result built =
+      RunCli("localize --map-from-log " + Path("sim/log.clf") + log + " --out " + Path("built"));
+  ASSERT_EQ(built.status, 0) << built.output;
+  fs::create_directories(Path("maps/lab"));
+  fs::copy_file(Path("built/map.yaml"), Path("maps/lab/map.yaml"));
+  fs::copy_file(Path("built/map.pgm"), Path("maps/lab/map.pgm"));
+  const Result reused =
+      RunCli("localize --map " + Path("maps/lab/map.yaml") + log + " --out " + Path("reused"));
+  ASSERT_EQ(reused.status, 0) << reused.output;
+  std::ifstream a(Path("built/trajectory.txt")), b(Path("reused/trajectory.txt"));
+  const std::string built_trajectory((std::istreambuf_iterator<char>(a)), {});
+  const std::string reused_trajectory((std::istreambuf_iterator<char>(b)), {});
+  EXPECT_FALSE(built_trajectory.empty());
+  EXPECT_EQ(built_trajectory, reused_trajectory);
+}
+
+// A bad log found by the service is named as the user named it, with its line.
+TEST_F(CliTest, AMalformedLogFailsTheJobNamingFileAndLine) {
+  ASSERT_EQ(
+      RunCli("simulate --world s-corridor --max-scans 5 --seed 2 --out " + Path("sim")).status, 0);
+  std::ofstream(Path("broken.clf"))
+      << "# header\nODOM 0 0 0 0 0 0 1.0 nohost 0\nFLASER 3 1.0 2.0 x 0 0 0 0 0 0 1.0 nohost 0\n";
+  const Result r = RunCli("localize --map " + Path("sim/world.lines") + " --log " +
+                          Path("broken.clf") + " --out " + Path("o"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("broken.clf:3"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("evoslam-coordinator"), std::string::npos) << r.output;
 }
 
 // A refused command line exits with 2 and says which flag, before any file is touched (m and l

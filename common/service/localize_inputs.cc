@@ -15,6 +15,21 @@ std::filesystem::path Need(const DatasetFiles& files, const proto::DatasetRef& r
   throw Error(std::string(what) + " " + ref.name() + " (" + ref.sha256() + ") is not available");
 }
 
+// Runs `read`, naming a bad input by the name it was uploaded under instead of the cache path
+// it is read from, which means nothing to whoever submitted the job.
+template <typename Read>
+auto Named(const proto::DatasetRef& ref, Read read) {
+  try {
+    return read();
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    const std::string prefix =
+        e.source() + (e.line() > 0 ? ":" + std::to_string(e.line()) : std::string()) + ": ";
+    throw InputError(ref.name(), e.line(),
+                     what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what);
+  }
+}
+
 }  // namespace
 
 OccupancyGrid GridFromLog(const std::filesystem::path& path, double resolution, bool lenient) {
@@ -34,7 +49,9 @@ std::shared_ptr<const LocalizeInputs> LoadLocalizeInputs(DatasetFiles& files,
                                                          const proto::LocalizeParams& params) {
   LocalizeOptions options = LocalizeOptionsFromProto(params);
   CarmenReadStats stats;
-  Dataset dataset = ReadCarmen(Need(files, log, "log"), {.lenient = params.lenient()}, &stats);
+  Dataset dataset = Named(log, [&] {
+    return ReadCarmen(Need(files, log, "log"), {.lenient = params.lenient()}, &stats);
+  });
   if (stats.skipped > 0) {
     spdlog::warn("{}: skipped {} malformed lines (first: {})", log.name(), stats.skipped,
                  stats.first_skip_reason);
@@ -42,12 +59,13 @@ std::shared_ptr<const LocalizeInputs> LoadLocalizeInputs(DatasetFiles& files,
   std::filesystem::path map_path = Need(files, map, "map");
   if (params.map_from_log()) {
     return std::make_shared<const LocalizeInputs>(LocalizeInputs{
-        std::move(options), std::move(dataset),
-        MapModel(GridFromLog(map_path, params.grid_resolution_m(), params.lenient()))});
+        std::move(options), std::move(dataset), Named(map, [&] {
+          return MapModel(GridFromLog(map_path, params.grid_resolution_m(), params.lenient()));
+        })});
   }
   if (!map_image.sha256().empty()) map_path = files.MapWithImage(map, map_image);
-  return std::make_shared<const LocalizeInputs>(
-      LocalizeInputs{std::move(options), std::move(dataset), LoadMapModel(map_path)});
+  return std::make_shared<const LocalizeInputs>(LocalizeInputs{
+      std::move(options), std::move(dataset), Named(map, [&] { return LoadMapModel(map_path); })});
 }
 
 }  // namespace evoslam
