@@ -1,0 +1,127 @@
+// Accuracy of paper 002's searches on simulated drives with known ground truth (label
+// "accuracy": long under the sanitizers, so their pass leaves them out).
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "common/engine/presets.h"
+#include "common/eval/trajectory_errors.h"
+#include "common/optim/evolve.h"
+#include "common/sim/simulator.h"
+#include "common/sim/world.h"
+#include "common/slam/global_search_problem.h"
+#include "common/slam/local_search.h"
+
+namespace evoslam {
+namespace {
+
+// Root-mean-square distance of a trajectory's positions from the truth.
+double Ate(const std::vector<StampedPose>& trajectory, const Dataset& d) {
+  std::vector<StampedPose> truth;
+  for (const LaserScan& s : d.scans) truth.push_back({s.timestamp, *s.true_pose});
+  return ComputeAbsoluteErrors(trajectory, truth).rms_translation;
+}
+
+TEST(LocalSearchAccuracyTest, CorrectsDriftingOdometryOnARealisticRoute) {
+  SimulationOptions sim;
+  sim.noise.gaussian_sigma = 0.01;
+  sim.noise.odometry.rotation_bias = 0.02;  // a strong heading drift
+  sim.max_scans = 150;
+  const Dataset d = Simulate(BuiltinWorld("office-boxes"), sim);
+  std::vector<StampedPose> odometry;
+  for (const LaserScan& s : d.scans) odometry.push_back({s.timestamp, s.odometry});
+
+  for (const LocalFitness fitness : {LocalFitness::kEval1, LocalFitness::kEval2}) {
+    LocalSearchParams params;
+    params.fitness = fitness;
+    HitCountGrid map = EmptyMapFor(d, params);
+    const LocalSearchResult r = RunLocalSearch(d, params, 1, map);
+    ASSERT_EQ(r.trajectory.size(), d.scans.size());
+    EXPECT_EQ(r.evaluations, (d.scans.size() - 1) * 10 * 31);
+    const double odometry_ate = Ate(odometry, d), local_ate = Ate(r.trajectory, d);
+    EXPECT_LT(local_ate, 0.5 * odometry_ate) << LocalFitnessName(fitness) << ": odometry "
+                                             << odometry_ate << " m, local " << local_ate << " m";
+    // Every scan is in the map.
+    std::size_t returns = 0;
+    for (const LaserScan& s : d.scans) {
+      for (std::size_t i = 0; i < s.size(); ++i) returns += s.is_return(i);
+    }
+    EXPECT_EQ(map.total(), returns);
+  }
+}
+
+double Ate(std::span<const Pose2> poses, const Dataset& d) {
+  std::vector<StampedPose> estimate, truth;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    estimate.push_back({d.scans[i].timestamp, poses[i]});
+    truth.push_back({d.scans[i].timestamp, *d.scans[i].true_pose});
+  }
+  return ComputeAbsoluteErrors(estimate, truth).rms_translation;
+}
+
+// A drive through the office cluster whose odometry drifts, and the first place it comes back to:
+// scan `later` stands where scan `earlier` stood, at least 40 scans before.
+struct Loop {
+  Dataset log;
+  std::size_t earlier = 0, later = 0;
+};
+
+Loop DriveALoop() {
+  SimulationOptions sim;
+  sim.laser.beams = 91;
+  sim.noise.odometry.rotation_bias = 0.02;
+  sim.max_scans = 300;
+  Loop loop;
+  loop.log = Simulate(BuiltinWorld("office-cluster"), sim);
+  const auto& scans = loop.log.scans;
+  for (std::size_t j = 40; j < scans.size() && loop.later == 0; ++j) {
+    for (std::size_t i = 0; i + 40 <= j; ++i) {
+      if ((scans[i].true_pose->translation() - scans[j].true_pose->translation()).norm() < 0.3) {
+        loop.earlier = i;
+        loop.later = j;
+        break;
+      }
+    }
+  }
+  EXPECT_GT(loop.later, 0u) << "the route never comes back to a place it passed";
+  return loop;
+}
+
+TEST(GlobalSearchAccuracyTest, ClosingALoopWithThe002SearchUndoesTheDrift) {
+  const Loop loop = DriveALoop();
+  const std::size_t n = loop.later + 1;
+  std::vector<Pose2> odometry;
+  for (std::size_t i = 0; i < n; ++i) odometry.push_back(loop.log.scans[i].odometry);
+  // The place seen twice, as a perfect matcher would report it.
+  const LoopConstraint constraint{
+      loop.earlier, loop.later,
+      loop.log.scans[loop.earlier].true_pose->inverse() * *loop.log.scans[loop.later].true_pose};
+  const HitCountGrid base(0.05, Eigen::Vector2d(-2, -2), 600, 460);
+  GlobalSearchParams params;
+  params.partitions = 4;
+  const GlobalSearchProblem problem(loop.log.scans, odometry, 0, n, base, params, constraint);
+
+  const Preset& preset = FindPreset("mu+lambda-002");
+  const std::unique_ptr<Algorithm> ea = MakeAlgorithm(preset.algorithm);
+  StopCriteria stop;
+  stop.max_generations = 60;
+  StopTracker tracker(stop);
+  Rng rng(4);
+  ea->Initialize(problem, rng);
+  Advance(problem, *ea, tracker, rng);
+  const Population& pop = ea->population();
+  const std::size_t best = PickGlobalSolution(pop.f);
+  const std::vector<Pose2> corrected = problem.Apply(pop.x.col(static_cast<Eigen::Index>(best)));
+
+  const double before = Ate(odometry, loop.log), after = Ate(corrected, loop.log);
+  EXPECT_LT(after, 0.5 * before) << "odometry " << before << " m, global search " << after << " m";
+  double identity[2], found[2];
+  problem.Evaluate(problem.Identity(), identity);
+  problem.Evaluate(pop.x.col(static_cast<Eigen::Index>(best)), found);
+  EXPECT_LT(found[1], identity[1]);  // the loop is closer to closed
+}
+
+}  // namespace
+}  // namespace evoslam
