@@ -31,6 +31,12 @@ std::optional<Eigen::Vector2i> HitCountGrid::WorldToCell(const Eigen::Vector2d& 
   return Eigen::Vector2i(static_cast<int>(x), static_cast<int>(y));
 }
 
+std::optional<std::size_t> HitCountGrid::CellIndex(const Eigen::Vector2d& point) const {
+  const auto cell = WorldToCell(point);
+  if (!cell) return std::nullopt;
+  return Index(cell->x(), cell->y());
+}
+
 std::uint32_t HitCountGrid::count(int x, int y) const {
   if (x < 0 || y < 0 || x >= width_ || y >= height_) {
     throw std::out_of_range("hit count grid: cell (" + std::to_string(x) + ", " +
@@ -40,9 +46,9 @@ std::uint32_t HitCountGrid::count(int x, int y) const {
 }
 
 bool HitCountGrid::Add(const Eigen::Vector2d& point, int delta) {
-  const auto cell = WorldToCell(point);
-  if (!cell) return false;
-  std::uint32_t& c = counts_[Index(cell->x(), cell->y())];
+  const auto index = CellIndex(point);
+  if (!index) return false;
+  std::uint32_t& c = counts_[*index];
   const std::uint32_t before = c;
   if (delta >= 0) {
     c += static_cast<std::uint32_t>(delta);
@@ -56,12 +62,7 @@ bool HitCountGrid::Add(const Eigen::Vector2d& point, int delta) {
 
 std::size_t HitCountGrid::AddScan(const LaserScan& scan, const Pose2& pose, int delta) {
   std::size_t outside = 0;
-  for (std::size_t i = 0; i < scan.size(); ++i) {
-    if (!scan.is_return(i)) continue;
-    const double a = scan.angle(i);
-    const Eigen::Vector2d local(scan.ranges[i] * std::cos(a), scan.ranges[i] * std::sin(a));
-    outside += !Add(pose * local, delta);
-  }
+  for (const Eigen::Vector2d& p : ReturnPoints(scan)) outside += !Add(pose * p, delta);
   return outside;
 }
 

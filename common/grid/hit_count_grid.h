@@ -31,8 +31,13 @@ class HitCountGrid {
 
   // The cell holding a world point; nullopt outside the grid or for a point not finite.
   std::optional<Eigen::Vector2i> WorldToCell(const Eigen::Vector2d& point) const;
+  // The index of the cell holding a world point (row-major: y * width + x), for callers that
+  // gather cells; nullopt outside the grid.
+  std::optional<std::size_t> CellIndex(const Eigen::Vector2d& point) const;
   // Throws std::out_of_range outside the grid.
   std::uint32_t count(int x, int y) const;
+  // The count of a cell by its index; throws std::out_of_range for an index past the grid.
+  std::uint32_t count(std::size_t index) const { return counts_.at(index); }
 
   // Adds `delta` observations at a world point (a negative delta takes them back; a count never
   // goes below zero). Returns false, changing nothing, for a point outside the grid.

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "common/transform/pose2.h"
 
 namespace evoslam {
@@ -27,8 +29,8 @@ struct LaserScan {
   double range_max = 0.0;
   std::vector<float> ranges;
 
-  Pose2 pose;      // the pose the log states for the scan (FLASER x y theta)
-  Pose2 odometry;  // raw odometry at the scan
+  Pose2 pose;                      // the pose the log states for the scan (FLASER x y theta)
+  Pose2 odometry;                  // raw odometry at the scan
   std::optional<Pose2> true_pose;  // ground truth, from a TRUEPOS line with the same timestamp
 
   std::size_t size() const { return ranges.size(); }
@@ -36,6 +38,9 @@ struct LaserScan {
   double field_of_view() const;  // angle from the first to the last beam
   bool is_return(std::size_t i) const;
 };
+
+// The end points of a scan's returns in the laser's own frame, in beam order.
+std::vector<Eigen::Vector2d> ReturnPoints(const LaserScan& scan);
 
 }  // namespace evoslam
 

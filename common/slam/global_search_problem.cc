@@ -46,16 +46,7 @@ GlobalSearchProblem::GlobalSearchProblem(std::span<const LaserScan> scans,
   const std::size_t steps = increments_.size();
   const std::size_t partitions = std::max<std::size_t>(1, std::min(params.partitions, steps));
   for (std::size_t i = 0; i <= partitions; ++i) bounds_.push_back(i * steps / partitions);
-  for (std::size_t k = first; k < last; ++k) {
-    const LaserScan& s = scans[k];
-    std::vector<Eigen::Vector2d> points;
-    for (std::size_t i = 0; i < s.size(); ++i) {
-      if (!s.is_return(i)) continue;
-      const double a = s.angle(i), r = s.ranges[i];
-      points.emplace_back(r * std::cos(a), r * std::sin(a));
-    }
-    returns_.push_back(std::move(points));
-  }
+  for (std::size_t k = first; k < last; ++k) returns_.push_back(ReturnPoints(scans[k]));
   if (loop && loop->earlier < first) loop_earlier_pose_ = poses[loop->earlier];
   const auto n = static_cast<Eigen::Index>(partitions * kGenesPerColumn);
   lower_.resize(n);
@@ -113,35 +104,25 @@ std::vector<Pose2> GlobalSearchProblem::Apply(const Eigen::Ref<const Eigen::Vect
 void GlobalSearchProblem::Score(const Eigen::Ref<const Eigen::VectorXd>& x,
                                 std::vector<std::size_t>& cells, double* fitness) const {
   const std::vector<Pose2> poses = Apply(x);
-  const auto width = static_cast<std::size_t>(base_.width());
   cells.clear();
   for (std::size_t k = 0; k < poses.size(); ++k) {
     for (const Eigen::Vector2d& p : returns_[k]) {
-      if (const auto c = base_.WorldToCell(poses[k] * p)) {
-        cells.push_back(static_cast<std::size_t>(c->y()) * width +
-                        static_cast<std::size_t>(c->x()));
-      }
+      if (const auto c = base_.CellIndex(poses[k] * p)) cells.push_back(*c);
     }
   }
   const std::size_t inside = cells.size();
   std::sort(cells.begin(), cells.end());
   cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
   std::size_t fresh = 0;
-  for (const std::size_t c : cells) {
-    fresh += base_.count(static_cast<int>(c % width), static_cast<int>(c / width)) == 0;
-  }
+  for (const std::size_t c : cells) fresh += base_.count(c) == 0;
   const double occupied = static_cast<double>(base_.occupied() + fresh);
   fitness[0] = occupied > 0 ? -static_cast<double>(base_.total() + inside) / occupied : 0.0;
 
   // Eq. 7: path cells on obstacles, and the loop's two observations of one place.
   double conflicts = 0.0;
   for (const Pose2& pose : poses) {
-    const auto c = base_.WorldToCell(pose.translation());
-    if (!c) continue;
-    const std::size_t index =
-        static_cast<std::size_t>(c->y()) * width + static_cast<std::size_t>(c->x());
-    conflicts +=
-        base_.count(c->x(), c->y()) > 0 || std::binary_search(cells.begin(), cells.end(), index);
+    const auto c = base_.CellIndex(pose.translation());
+    if (c) conflicts += base_.count(*c) > 0 || std::binary_search(cells.begin(), cells.end(), *c);
   }
   double distance = 0.0;
   if (loop_) {

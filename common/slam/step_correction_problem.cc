@@ -25,13 +25,9 @@ StepCorrectionProblem::StepCorrectionProblem(const HitCountGrid& map, const Lase
   if (!(max_error.array() >= 0.0).all() || !max_error.allFinite()) {
     throw Error("local search: the maximum step error must be finite and not negative");
   }
+  returns_ = ReturnPoints(scan);
   double reach = 0.0;
-  for (std::size_t i = 0; i < scan.size(); ++i) {
-    if (!scan.is_return(i)) continue;
-    const double a = scan.angle(i), r = scan.ranges[i];
-    returns_.emplace_back(r * std::cos(a), r * std::sin(a));
-    reach = std::max(reach, r);
-  }
+  for (const Eigen::Vector2d& p : returns_) reach = std::max(reach, p.norm());
   // Every candidate's end points lie within this distance of the predicted ones.
   const double margin = max_error.head<2>().norm() + reach * max_error(2) + map.resolution();
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
@@ -64,20 +60,13 @@ double StepCorrectionProblem::Score(const Eigen::Ref<const Eigen::VectorXd>& err
   const Pose2 pose = Corrected(error);
   cells.clear();
   for (const Eigen::Vector2d& p : returns_) {
-    if (const auto cell = map_.WorldToCell(pose * p)) {
-      cells.push_back(static_cast<std::size_t>(cell->y()) * static_cast<std::size_t>(map_.width()) +
-                      static_cast<std::size_t>(cell->x()));
-    }
+    if (const auto cell = map_.CellIndex(pose * p)) cells.push_back(*cell);
   }
   const std::size_t inside = cells.size();
   std::sort(cells.begin(), cells.end());
   cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
   std::size_t fresh = 0;  // cells the scan makes occupied
-  for (const std::size_t c : cells) {
-    const int x = static_cast<int>(c % static_cast<std::size_t>(map_.width()));
-    const int y = static_cast<int>(c / static_cast<std::size_t>(map_.width()));
-    fresh += map_.count(x, y) == 0;
-  }
+  for (const std::size_t c : cells) fresh += map_.count(c) == 0;
   const double occupied = static_cast<double>(window_.occupied + fresh);
   if (fitness_ == LocalFitness::kEval1) return occupied;
   const double total = static_cast<double>(window_.total + inside);
