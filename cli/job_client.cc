@@ -28,10 +28,10 @@ void UploadMap(ServiceClient& client, const std::filesystem::path& map, proto::J
                                            WithMapYamlImage(yaml, SafeFileName(image_ref.name())));
 }
 
-std::vector<proto::ResultFile> FollowToResult(ServiceClient& client, const std::string& job_id) {
+proto::JobStatus WatchWithProgress(ServiceClient& client, const std::string& job_id) {
   std::unique_ptr<ProgressBar> bar;
   std::string phase;
-  const proto::JobStatus final_status = client.Watch(job_id, [&](const proto::ProgressEvent& e) {
+  return client.Watch(job_id, [&](const proto::ProgressEvent& e) {
     const proto::JobStatus& s = e.status();
     if (s.total() == 0) return;
     if (!bar || s.phase() != phase) {
@@ -41,7 +41,10 @@ std::vector<proto::ResultFile> FollowToResult(ServiceClient& client, const std::
     }
     bar->Update(s.done());
   });
-  bar.reset();
+}
+
+std::vector<proto::ResultFile> FollowToResult(ServiceClient& client, const std::string& job_id) {
+  const proto::JobStatus final_status = WatchWithProgress(client, job_id);
   if (final_status.state() == proto::JOB_STATE_FAILED) {
     throw Error(job_id + " failed: " + final_status.error());
   }
@@ -57,23 +60,6 @@ void WriteResultFiles(const std::vector<proto::ResultFile>& files,
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out.write(f.content().data(), static_cast<std::streamsize>(f.content().size()));
     if (!out) throw Error("cannot write " + path.string());
-  }
-}
-
-std::string_view JobStateName(proto::JobState state) {
-  switch (state) {
-    case proto::JOB_STATE_QUEUED:
-      return "queued";
-    case proto::JOB_STATE_RUNNING:
-      return "running";
-    case proto::JOB_STATE_SUCCEEDED:
-      return "succeeded";
-    case proto::JOB_STATE_FAILED:
-      return "failed";
-    case proto::JOB_STATE_CANCELLED:
-      return "cancelled";
-    default:
-      return "unknown";
   }
 }
 

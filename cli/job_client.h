@@ -14,15 +14,17 @@ namespace evoslam::cli {
 // names the image by its base name, so both can live side by side on the coordinator).
 void UploadMap(ServiceClient& client, const std::filesystem::path& map, proto::JobSpec& spec);
 
-// Follows a job to its end with a progress bar on a terminal; throws Error when it failed or
-// was cancelled. Returns its files.
+// Follows a job to its end, with a progress bar per phase on a terminal; returns its final
+// status.
+proto::JobStatus WatchWithProgress(ServiceClient& client, const std::string& job_id);
+
+// Follows a job to its end as WatchWithProgress does; throws Error when it failed or was
+// cancelled. Returns its files.
 std::vector<proto::ResultFile> FollowToResult(ServiceClient& client, const std::string& job_id);
 
 // Writes a job's files into `dir` (created if needed).
 void WriteResultFiles(const std::vector<proto::ResultFile>& files,
                       const std::filesystem::path& dir);
-
-std::string_view JobStateName(proto::JobState state);
 
 }  // namespace evoslam::cli
 

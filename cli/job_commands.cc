@@ -2,15 +2,14 @@
 
 #include <cstdio>
 #include <ctime>
-#include <memory>
 #include <string>
 
 #include "cli/commands.h"
 #include "cli/job_client.h"
 #include "cli/service_options.h"
+#include "common/service/job_state.h"
 #include "common/service/service_client.h"
 #include "common/util/error.h"
-#include "common/util/progress_bar.h"
 
 namespace evoslam::cli {
 namespace {
@@ -75,19 +74,7 @@ void AddJobCommands(CLI::App& app) {
   });
   JobCommand(app, "watch", "Follow a job to its end with a progress bar", a, true)->callback([a] {
     Connection c(a->service);
-    std::unique_ptr<ProgressBar> bar;
-    std::string phase;
-    const proto::JobStatus s = c.client.Watch(a->job_id, [&](const proto::ProgressEvent& e) {
-      const proto::JobStatus& st = e.status();
-      if (st.total() == 0) return;
-      if (!bar || st.phase() != phase) {
-        bar.reset();
-        phase = st.phase();
-        bar = std::make_unique<ProgressBar>(phase, st.total());
-      }
-      bar->Update(st.done());
-    });
-    bar.reset();
+    const proto::JobStatus s = WatchWithProgress(c.client, a->job_id);
     PrintStatus(s);
     if (s.state() != proto::JOB_STATE_SUCCEEDED) {
       throw Error(a->job_id + " " + std::string(JobStateName(s.state())));

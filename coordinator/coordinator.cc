@@ -21,6 +21,7 @@
 #include "common/protocol/wire.h"
 #include "common/protocol/zmq_io.h"
 #include "common/service/dataset_files.h"
+#include "common/service/job_state.h"
 #include "common/util/error.h"
 #include "common/util/sha256.h"
 #include "common/util/temp_dir.h"
@@ -41,11 +42,6 @@ double UnixNow() {
 
 Clock::duration Seconds(double s) {
   return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
-}
-
-bool Finished(proto::JobState state) {
-  return state == proto::JOB_STATE_SUCCEEDED || state == proto::JOB_STATE_FAILED ||
-         state == proto::JOB_STATE_CANCELLED;
 }
 
 // The printable start of a socket identity, for logs.
@@ -414,7 +410,7 @@ proto::ClientReply Coordinator::Impl::Watch(const std::string& identity,
   const std::string& job_id = request.watch().job_id();
   proto::ClientReply reply;
   *reply.mutable_event()->mutable_status() = StatusOf(job_id);
-  if (!Finished(reply.event().status().state())) {
+  if (!IsFinished(reply.event().status().state())) {
     if (watchers_.size() >= options_.max_watchers) {
       throw ProtocolError(proto::ERROR_CODE_QUEUE_FULL, "too many clients are watching jobs");
     }
@@ -471,7 +467,7 @@ void Coordinator::Impl::FlushEvents() {
     if (first == last) continue;
     proto::ClientReply reply;
     *reply.mutable_event()->mutable_status() = StatusOf(job_id);
-    const bool finished = Finished(reply.event().status().state());
+    const bool finished = IsFinished(reply.event().status().state());
     for (auto it = first; it != last;) {
       reply.set_request_id(it->second.request_id);
       const bool delivered = SendTo(clients_, it->second.identity, Encode(reply));
@@ -665,7 +661,7 @@ void Coordinator::Impl::RunJob(const std::string& job_id) {
     {
       std::lock_guard lock(store_mutex_);
       const auto status = store_.Status(job_id);
-      if (!status || Finished(status->state())) return;  // cancelled while it waited
+      if (!status || IsFinished(status->state())) return;  // cancelled while it waited
       context.spec = *store_.Spec(job_id);
       std::vector<proto::DatasetRef> refs = {context.spec.log(), context.spec.map()};
       if (!context.spec.map_image().sha256().empty()) refs.push_back(context.spec.map_image());

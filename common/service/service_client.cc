@@ -7,6 +7,7 @@
 #include <sstream>
 #include <utility>
 
+#include "common/service/job_state.h"
 #include "common/util/error.h"
 #include "common/util/sha256.h"
 
@@ -161,10 +162,6 @@ std::vector<proto::JobStatus> ServiceClient::Jobs() {
 
 proto::JobStatus ServiceClient::Watch(
     const std::string& job_id, const std::function<void(const proto::ProgressEvent&)>& on_event) {
-  const auto finished = [](const proto::JobStatus& s) {
-    return s.state() == proto::JOB_STATE_SUCCEEDED || s.state() == proto::JOB_STATE_FAILED ||
-           s.state() == proto::JOB_STATE_CANCELLED;
-  };
   for (;;) {
     proto::ClientRequest r;
     r.mutable_watch()->set_job_id(job_id);
@@ -181,7 +178,7 @@ proto::JobStatus ServiceClient::Watch(
         throw ProtocolError(reply->error().code(), "coordinator: " + reply->error().message());
       }
       if (on_event) on_event(reply->event());
-      if (finished(reply->event().status())) return reply->event().status();
+      if (IsFinished(reply->event().status().state())) return reply->event().status();
       reply = Receive(id, options_.timeout_seconds);
     }
   }
