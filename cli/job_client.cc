@@ -1,9 +1,9 @@
 #include "cli/job_client.h"
 
 #include <fstream>
-#include <iterator>
 #include <memory>
 
+#include "common/io/file_bytes.h"
 #include "common/service/dataset_files.h"
 #include "common/util/error.h"
 #include "common/util/progress_bar.h"
@@ -15,9 +15,7 @@ void UploadMap(ServiceClient& client, const std::filesystem::path& map, proto::J
     *spec.mutable_map() = client.Upload(map);
     return;
   }
-  std::ifstream in(map, std::ios::binary);
-  if (!in) throw InputError(map.string(), 0, "cannot open");
-  const std::string yaml((std::istreambuf_iterator<char>(in)), {});
+  const std::string yaml = ReadFileBytes(map);
   const auto image = MapYamlImage(yaml);
   if (!image || image->empty()) throw InputError(map.string(), 0, "no 'image:' key");
   std::filesystem::path image_path(*image);

@@ -1,11 +1,10 @@
 #include "common/report/localize_outputs.h"
 
 #include <fstream>
-#include <iterator>
-#include <sstream>
 
 #include "common/eval/trajectory_errors.h"
 #include "common/grid/map_io.h"
+#include "common/io/file_bytes.h"
 #include "common/io/trajectory_io.h"
 #include "common/report/localize_report.h"
 #include "common/report/map_picture.h"
@@ -16,11 +15,9 @@ namespace evoslam {
 namespace {
 
 proto::ResultFile ReadBack(const TempDir& dir, const std::string& name) {
-  std::ifstream in(dir / name, std::ios::binary);
-  if (!in) throw Error("cannot read back the output " + (dir / name).string());
   proto::ResultFile file;
   file.set_name(name);
-  file.set_content(std::string(std::istreambuf_iterator<char>(in), {}));
+  file.set_content(ReadFileBytes(dir / name));
   return file;
 }
 

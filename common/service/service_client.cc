@@ -2,11 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
-#include <fstream>
-#include <iterator>
 #include <sstream>
 #include <utility>
 
+#include "common/io/file_bytes.h"
 #include "common/service/job_state.h"
 #include "common/util/error.h"
 #include "common/util/sha256.h"
@@ -15,14 +14,6 @@ namespace evoslam {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-std::string ReadFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string(), 0, "cannot open");
-  std::string bytes((std::istreambuf_iterator<char>(in)), {});
-  if (in.bad()) throw InputError(path.string(), 0, "cannot read");
-  return bytes;
-}
 
 std::string Trim(const std::string& s) {
   const auto first = s.find_first_not_of(" \t\r\"'");
@@ -138,7 +129,7 @@ proto::DatasetRef ServiceClient::UploadBytes(const std::string& name, const std:
 }
 
 proto::DatasetRef ServiceClient::Upload(const std::filesystem::path& file) {
-  return UploadBytes(file.filename().string(), ReadFile(file));
+  return UploadBytes(file.filename().string(), ReadFileBytes(file));
 }
 
 std::string ServiceClient::Submit(const proto::JobSpec& spec) {
