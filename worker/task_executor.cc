@@ -65,8 +65,8 @@ std::vector<proto::DatasetRef> TaskExecutor::Missing(const proto::Task& task) co
   return missing;
 }
 
-std::shared_ptr<const LocalizeInputs> TaskExecutor::Inputs(const proto::ProblemSpec& problem) {
-  const std::string key = InputsKey(problem);
+std::shared_ptr<const LocalizeInputs> TaskExecutor::Inputs(const proto::ProblemSpec& problem,
+                                                           const std::string& key) {
   if (auto hit = Lookup(inputs_, key)) return hit;
   auto inputs = LoadLocalizeInputs(*files_, problem.log(), problem.map(), problem.map_image(),
                                    problem.localize());
@@ -94,14 +94,15 @@ proto::TaskResult TaskExecutor::Run(const proto::Task& task) {
       throw Error("task " + task.task_id() + ": a problem of kind " + std::to_string(spec.kind()) +
                   " is not one this worker knows");
     }
-    const auto inputs = Inputs(spec);
+    const std::string key = InputsKey(spec);
+    const auto inputs = Inputs(spec, key);
     if (spec.scan() >= inputs->dataset.scans.size() || spec.center_size() != 3) {
       throw Error("task " + task.task_id() + ": scan " + std::to_string(spec.scan()) +
                   " with a centre of " + std::to_string(spec.center_size()) +
                   " values does not fit a log of " + std::to_string(inputs->dataset.scans.size()) +
                   " scans");
     }
-    const auto scan_problem = ScanProblemOf(spec, *inputs, InputsKey(spec));
+    const auto scan_problem = ScanProblemOf(spec, *inputs, key);
     const Problem& problem = *scan_problem->problem;
     proto::TaskResult result;
     result.set_task_id(task.task_id());

@@ -27,7 +27,9 @@ class TaskExecutor {
   proto::TaskResult Run(const proto::Task& task);
 
  private:
-  std::shared_ptr<const LocalizeInputs> Inputs(const proto::ProblemSpec& problem);
+  // The job's parsed inputs; `key` names them (InputsKey).
+  std::shared_ptr<const LocalizeInputs> Inputs(const proto::ProblemSpec& problem,
+                                               const std::string& key);
   // The scan's problem: built once for the many tasks of one scan's search.
   std::shared_ptr<const ScanProblem> ScanProblemOf(const proto::ProblemSpec& problem,
                                                    const LocalizeInputs& inputs,
