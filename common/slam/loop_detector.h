@@ -1,0 +1,55 @@
+#ifndef EVOSLAM_COMMON_SLAM_LOOP_DETECTOR_H_
+#define EVOSLAM_COMMON_SLAM_LOOP_DETECTOR_H_
+
+#include <cstddef>
+#include <optional>
+#include <span>
+
+#include "common/sensor/laser_scan.h"
+#include "common/slam/global_search_problem.h"
+#include "common/transform/pose2.h"
+
+namespace evoslam {
+
+// When the robot is back in a place it has mapped and its scan does not fit the map there: the
+// rule that starts a loop-closing global search (docs/rss_slam.md).
+struct LoopDetectionParams {
+  // A revisit: the current pose lies within this distance of an earlier pose...
+  double revisit_radius = 2.0;  // m
+  // ...that is at least this many scans and this much travelled path back.
+  std::size_t min_gap = 100;
+  double min_travel = 8.0;  // m
+  // The scan is matched against the earlier place's map (the scans within place_scans of the
+  // earlier one) inside this window around where the trajectory puts it.
+  std::size_t place_scans = 25;
+  double match_window = 1.5;         // m, half-width
+  double match_window_theta = 0.35;  // rad, half-width
+  // The match is trusted when this fraction of the scan's returns land near the place's
+  // obstacles (the likelihood score's mean, 0 to 1)...
+  double min_score = 0.6;
+  // ...and the scan does not fit where the trajectory puts it when the match moves it further
+  // than this.
+  double fit_tolerance = 0.1;         // m
+  double fit_tolerance_theta = 0.02;  // rad
+  // Scans after a detection before the next one may be reported.
+  std::size_t cooldown = 50;
+};
+
+void ValidateLoopDetectionParams(const LoopDetectionParams& params);
+
+// A place seen twice, found by matching.
+struct LoopClosure {
+  LoopConstraint constraint;
+  double score = 0.0;  // the match's likelihood score, 0 to 1
+};
+
+// Checks scan `current` (its pose poses[current]) against the places the trajectory passed
+// before; poses holds the poses of scans [0, current]. Returns the loop when the scan is a
+// revisit of an earlier place whose match is trusted and does not fit the trajectory.
+std::optional<LoopClosure> DetectLoop(std::span<const LaserScan> scans,
+                                      std::span<const Pose2> poses, std::size_t current,
+                                      const LoopDetectionParams& params);
+
+}  // namespace evoslam
+
+#endif  // EVOSLAM_COMMON_SLAM_LOOP_DETECTOR_H_
