@@ -4,24 +4,12 @@
 
 #include "common/eval/trajectory_errors.h"
 #include "common/grid/map_io.h"
-#include "common/io/file_bytes.h"
 #include "common/io/trajectory_io.h"
-#include "common/report/localize_report.h"
 #include "common/report/map_picture.h"
-#include "common/util/error.h"
+#include "common/report/result_files.h"
 #include "common/util/temp_dir.h"
 
 namespace evoslam {
-namespace {
-
-proto::ResultFile ReadBack(const TempDir& dir, const std::string& name) {
-  proto::ResultFile file;
-  file.set_name(name);
-  file.set_content(ReadFileBytes(dir / name));
-  return file;
-}
-
-}  // namespace
 
 std::vector<proto::ResultFile> LocalizeOutputs(const MapModel& map, const Dataset& dataset,
                                                const proto::LocalizeParams& params,
@@ -41,7 +29,7 @@ std::vector<proto::ResultFile> LocalizeOutputs(const MapModel& map, const Datase
 
   proto::LocalizeReport report;
   report.set_format_version(1);
-  report.set_evoslam_version("0.1.0");
+  report.set_evoslam_version(kEvoslamVersion);
   *report.mutable_params() = params;
   report.set_scans(static_cast<std::uint32_t>(result.trajectory.size()));
   report.set_evaluations(result.evaluations);
@@ -52,42 +40,24 @@ std::vector<proto::ResultFile> LocalizeOutputs(const MapModel& map, const Datase
   for (double f : result.fitness) fitness_sum += f;
   report.set_mean_fitness(result.fitness.empty() ? 0.0 : fitness_sum / result.fitness.size());
 
-  std::vector<StampedPose> truth;
-  for (std::size_t i = 0; i < result.trajectory.size(); ++i) {
-    const LaserScan& s = dataset.scans[i];
-    if (s.true_pose) truth.push_back({s.timestamp, *s.true_pose});
-  }
+  const std::vector<StampedPose> truth = ScanTruth(dataset, result.trajectory.size());
   if (!truth.empty()) {
     *report.mutable_absolute_errors() = ToProto(ComputeAbsoluteErrors(result.trajectory, truth));
   }
-  if (relations) {
-    *report.mutable_relation_errors() =
-        ToProto(ComputeRelationErrors(result.trajectory, relations->relations), relations->source);
-  } else if (truth.size() > 1) {
-    *report.mutable_relation_errors() =
-        ToProto(ComputeRelationErrors(result.trajectory, RelationsFromTruth(truth)),
-                "ground truth, consecutive scans");
+  if (auto errors = RelationErrorsReport(result.trajectory, truth, relations)) {
+    *report.mutable_relation_errors() = std::move(*errors);
   }
 
   std::vector<TrajectoryLayer> layers;
-  if (!truth.empty()) {
-    TrajectoryLayer t{"truth", {}, {0, 160, 0}};
-    for (const auto& s : truth) t.poses.push_back(s.pose);
-    layers.push_back(std::move(t));
-  }
-  TrajectoryLayer estimated{"estimate", {}, {220, 30, 30}};
-  for (const auto& s : result.trajectory) estimated.poses.push_back(s.pose);
-  layers.push_back(std::move(estimated));
+  if (!truth.empty()) layers.push_back(MakeLayer("truth", truth, kTruthColor));
+  layers.push_back(MakeLayer("estimate", result.trajectory, kEstimateColor));
   WriteMapPicture(map, layers, dir / "map.png");
   outputs.insert(outputs.end(), {"map.png", "report.json", "summary.txt"});
   for (const auto& o : outputs) report.add_outputs(o);
 
   WriteJson(report, dir / "report.json");
   std::ofstream(dir / "summary.txt") << FormatSummary(report);
-
-  std::vector<proto::ResultFile> files;
-  for (const auto& o : outputs) files.push_back(ReadBack(dir, o));
-  return files;
+  return ReadResultFiles(dir.path(), outputs);
 }
 
 }  // namespace evoslam

@@ -6,19 +6,14 @@
 #include <string>
 #include <vector>
 
-#include "common/io/relations.h"
 #include "common/localization/localizer.h"
 #include "common/localization/map_model.h"
+#include "common/report/localize_report.h"
 #include "common/sensor/dataset.h"
 #include "evoslam/localize.pb.h"
 #include "evoslam/service.pb.h"
 
 namespace evoslam {
-
-struct NamedRelations {
-  std::string source;  // the file they came from, for the report
-  std::vector<Relation> relations;
-};
 
 // Everything a localization job hands back, as named files: trajectory.txt and trajectory.tum,
 // report.json, summary.txt, map.png (the map with the estimate, and ground truth when the log

@@ -43,6 +43,45 @@ proto::RelationErrors ToProto(const RelationErrors& e, const std::string& source
   return p;
 }
 
+std::vector<StampedPose> ScanTruth(const Dataset& dataset, std::size_t scans) {
+  std::vector<StampedPose> truth;
+  for (std::size_t i = 0; i < scans; ++i) {
+    const LaserScan& s = dataset.scans.at(i);
+    if (s.true_pose) truth.push_back({s.timestamp, *s.true_pose});
+  }
+  return truth;
+}
+
+std::optional<proto::RelationErrors> RelationErrorsReport(
+    std::span<const StampedPose> trajectory, std::span<const StampedPose> truth,
+    const std::optional<NamedRelations>& relations) {
+  if (relations) {
+    return ToProto(ComputeRelationErrors(trajectory, relations->relations), relations->source);
+  }
+  if (truth.size() < 2) return std::nullopt;
+  return ToProto(ComputeRelationErrors(trajectory, RelationsFromTruth(truth)),
+                 "ground truth, consecutive scans");
+}
+
+std::string FormatAbsoluteErrors(const proto::AbsoluteErrors& a) {
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(2);
+  s << "x " << 100 * a.rms_x_m() << " cm, y " << 100 * a.rms_y_m() << " cm, heading "
+    << a.rms_theta_deg() << " deg (max " << 100 * a.max_translation_m() << " cm)";
+  return s.str();
+}
+
+std::string FormatRelationErrors(const proto::RelationErrors& e) {
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(4);
+  s << e.translation_mean_m() << " +- " << e.translation_std_m() << " m, ";
+  s.precision(3);
+  s << e.rotation_mean_deg() << " +- " << e.rotation_std_deg() << " deg";
+  return s.str();
+}
+
 void WriteJson(const google::protobuf::Message& message, const std::filesystem::path& path) {
   google::protobuf::util::JsonPrintOptions options;
   options.add_whitespace = true;
@@ -76,19 +115,12 @@ std::string FormatSummary(const proto::LocalizeReport& r) {
   s << "  runtime " << r.runtime_s() << " s (" << r.scans_per_second() << " scans/s, "
     << r.threads() << " threads), " << r.evaluations() << " fitness evaluations\n";
   if (r.has_absolute_errors()) {
-    const auto& a = r.absolute_errors();
-    s.precision(2);
-    s << "  RMS error vs ground truth: x " << 100 * a.rms_x_m() << " cm, y " << 100 * a.rms_y_m()
-      << " cm, heading " << a.rms_theta_deg() << " deg (max " << 100 * a.max_translation_m()
-      << " cm)\n";
+    s << "  RMS error vs ground truth: " << FormatAbsoluteErrors(r.absolute_errors()) << "\n";
   }
   if (r.has_relation_errors()) {
     const auto& e = r.relation_errors();
-    s.precision(4);
     s << "  relative error (" << e.source() << ", " << e.relations()
-      << " relations): " << e.translation_mean_m() << " +- " << e.translation_std_m() << " m, ";
-    s.precision(3);
-    s << e.rotation_mean_deg() << " +- " << e.rotation_std_deg() << " deg\n";
+      << " relations): " << FormatRelationErrors(e) << "\n";
   }
   return s.str();
 }

@@ -8,12 +8,38 @@
 #include <vector>
 
 #include "common/eval/trajectory_errors.h"
+#include "common/io/relations.h"
+#include "common/io/trajectory_io.h"
+#include "common/sensor/dataset.h"
 #include "evoslam/localize.pb.h"
 
 namespace evoslam {
 
+// What report.json's evoslam_version says.
+inline constexpr char kEvoslamVersion[] = "0.1.0";
+
+struct NamedRelations {
+  std::string source;  // the file they came from, for the report
+  std::vector<Relation> relations;
+};
+
 proto::AbsoluteErrors ToProto(const AbsoluteErrors& errors);
 proto::RelationErrors ToProto(const RelationErrors& errors, const std::string& source);
+
+// The true poses of the log's first `scans` scans, stamped with the scans' timestamps; scans
+// without one are left out.
+std::vector<StampedPose> ScanTruth(const Dataset& dataset, std::size_t scans);
+
+// A trajectory's relative error: against `relations` when given, else against consecutive
+// ground-truth poses when there are two or more; nothing to measure against, none.
+std::optional<proto::RelationErrors> RelationErrorsReport(
+    std::span<const StampedPose> trajectory, std::span<const StampedPose> truth,
+    const std::optional<NamedRelations>& relations);
+
+// "x 0.71 cm, y 0.66 cm, heading 0.20 deg (max 2.45 cm)", as the summaries print it.
+std::string FormatAbsoluteErrors(const proto::AbsoluteErrors& errors);
+// "0.0114 +- 0.0073 m, 0.500 +- 0.300 deg", as the summaries print it.
+std::string FormatRelationErrors(const proto::RelationErrors& errors);
 
 // Writes a message as indented JSON (all fields, including zeros); throws Error on failure.
 void WriteJson(const google::protobuf::Message& message, const std::filesystem::path& path);

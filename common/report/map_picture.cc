@@ -32,8 +32,15 @@ Bounds PictureBounds(const MapModel& map, std::span<const TrajectoryLayer> layer
 
 }  // namespace
 
-void WriteMapPicture(const MapModel& map, std::span<const TrajectoryLayer> layers,
-                     const std::filesystem::path& path, int max_pixels) {
+TrajectoryLayer MakeLayer(std::string name, std::span<const StampedPose> trajectory, Rgb color) {
+  TrajectoryLayer layer{std::move(name), {}, color};
+  layer.poses.reserve(trajectory.size());
+  for (const StampedPose& p : trajectory) layer.poses.push_back(p.pose);
+  return layer;
+}
+
+WorldCanvas DrawMapPicture(const MapModel& map, std::span<const TrajectoryLayer> layers,
+                           int max_pixels) {
   const Bounds bounds = PictureBounds(map, layers);
   const Eigen::Vector2d size = bounds.max - bounds.min;
   const double extent = std::max({size.x(), size.y(), 1.0});
@@ -53,7 +60,12 @@ void WriteMapPicture(const MapModel& map, std::span<const TrajectoryLayer> layer
     canvas.DrawPolyline(points, layer.color, 2);
     if (!layer.poses.empty()) canvas.DrawPose(layer.poses.front(), layer.color, 5.0, 2);
   }
-  WritePng(canvas.image(), path);
+  return canvas;
+}
+
+void WriteMapPicture(const MapModel& map, std::span<const TrajectoryLayer> layers,
+                     const std::filesystem::path& path, int max_pixels) {
+  WritePng(DrawMapPicture(map, layers, max_pixels).image(), path);
 }
 
 }  // namespace evoslam

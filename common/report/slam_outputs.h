@@ -1,0 +1,40 @@
+#ifndef EVOSLAM_COMMON_REPORT_SLAM_OUTPUTS_H_
+#define EVOSLAM_COMMON_REPORT_SLAM_OUTPUTS_H_
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "common/image/image.h"
+#include "common/report/localize_report.h"
+#include "common/sensor/dataset.h"
+#include "common/slam/rss_slam.h"
+#include "evoslam/service.pb.h"
+#include "evoslam/slam.pb.h"
+
+namespace evoslam {
+
+// map_trajectory.png's colours besides the truth's and the estimate's (map_picture.h).
+inline constexpr Rgb kOdometryColor{40, 90, 230};
+inline constexpr Rgb kLoopColor{240, 140, 0};
+
+// Everything a SLAM job hands back, as named files, in this order:
+//   trajectory.txt, trajectory.tum  the result's poses;
+//   map.yaml, map.pgm, map.png      an occupancy grid of the scans at those poses (cells of
+//                                   params.resolution_m, free where beams pass, occupied where
+//                                   they end), for map_server and as a picture;
+//   map_trajectory.png              the grid with the estimate, odometry, ground truth when the
+//                                   scans have it, and each loop closure as a line between its
+//                                   two poses;
+//   report.json, summary.txt        MakeSlamReport with the outputs listed, and its summary.
+// The result covers the log's first result.trajectory.size() scans. The same result gives the
+// same bytes. Throws Error for a result with no poses, more poses than scans, or a loop whose
+// scans lie beyond its poses.
+std::vector<proto::ResultFile> SlamOutputs(const Dataset& dataset, const proto::SlamParams& params,
+                                           const RssSlamResult& result,
+                                           const std::optional<NamedRelations>& relations,
+                                           std::uint32_t threads);
+
+}  // namespace evoslam
+
+#endif  // EVOSLAM_COMMON_REPORT_SLAM_OUTPUTS_H_

@@ -1,0 +1,325 @@
+#include "common/report/slam_outputs.h"
+
+#include <google/protobuf/util/json_util.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "common/grid/map_io.h"
+#include "common/image/image.h"
+#include "common/io/trajectory_io.h"
+#include "common/report/map_picture.h"
+#include "common/report/slam_report.h"
+#include "common/sim/simulator.h"
+#include "common/sim/world.h"
+#include "common/slam/local_search.h"
+#include "common/util/error.h"
+#include "common/util/scratch_dir.h"
+
+namespace evoslam {
+namespace {
+
+constexpr std::size_t kScans = 30;
+
+Dataset SimulatedLog() {
+  SimulationOptions options;
+  options.max_scans = kScans;
+  // Long steps and a strong heading drift, so that odometry parts from the truth visibly.
+  options.step = 0.2;
+  options.noise.odometry.rotation_bias = 0.05;
+  return Simulate(BuiltinWorld("office-boxes"), options);
+}
+
+proto::SlamParams Params() {
+  proto::SlamParams p;
+  p.set_method("rss");
+  p.set_log("office-boxes.clf");
+  p.set_seed(7);
+  p.set_local_fitness("eval1");
+  p.set_local_particles(10);
+  p.set_local_iterations(30);
+  p.set_resolution_m(0.05);
+  p.set_global_search(true);
+  p.set_global_every(300);
+  p.set_partitions(8);
+  p.set_islands(2);
+  p.set_preset("mu+lambda-002");
+  p.set_generations(100);
+  return p;
+}
+
+// A run that found the true poses shifted by `offset`, one loop from scan 25 back to scan 2,
+// and applied the global search it triggered.
+RssSlamResult ResultAtTruth(const Dataset& log, const Eigen::Vector2d& offset = {0, 0}) {
+  RssSlamResult r{.trajectory = {},
+                  .loops = {},
+                  .global_searches = {},
+                  .map = EmptyMapFor(log, LocalSearchParams{}),
+                  .times = {}};
+  for (const LaserScan& s : log.scans) {
+    const Pose2 pose(s.true_pose->translation() + offset, s.true_pose->theta());
+    r.trajectory.push_back({s.timestamp, pose});
+    r.map.AddScan(s, pose);
+  }
+  const LoopConstraint loop{2, 25, r.trajectory[2].pose.inverse() * r.trajectory[25].pose};
+  r.loops.push_back({loop, 0.8});
+  GlobalSearchRecord search{.first = 2, .last = 26, .loop = r.loops.front()};
+  search.applied = true;
+  search.evaluations = 700;
+  search.seconds = 0.5;
+  search.before[0] = -3.0;
+  search.before[1] = 1.5;
+  search.after[0] = -3.25;
+  search.after[1] = 0.0;
+  r.global_searches.push_back(search);
+  r.local_evaluations = 9000;
+  r.global_evaluations = 700;
+  r.times = {.local = 1.0, .detection = 0.25, .global = 0.5, .total = 1.875};
+  return r;
+}
+
+class SlamOutputsTest : public ::testing::Test {
+ protected:
+  // The files, written into the scratch folder for the readers, and by name.
+  std::map<std::string, std::string> Write(const std::vector<proto::ResultFile>& files) {
+    std::map<std::string, std::string> by_name;
+    for (const proto::ResultFile& f : files) {
+      std::ofstream(dir_ / f.name(), std::ios::binary) << f.content();
+      by_name[f.name()] = f.content();
+    }
+    return by_name;
+  }
+
+  proto::SlamReport ReadReport() const {
+    std::ifstream in(dir_ / "report.json");
+    const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    proto::SlamReport report;
+    EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(json, &report).ok()) << json;
+    return report;
+  }
+
+  const Dataset log_ = SimulatedLog();
+  const RssSlamResult result_ = ResultAtTruth(log_);
+  testing::ScratchDir dir_;
+};
+
+int CountPixels(const Image& image, Rgb color) {
+  int n = 0;
+  for (int y = 0; y < image.height(); ++y) {
+    for (int x = 0; x < image.width(); ++x) n += image.at(x, y) == color;
+  }
+  return n;
+}
+
+TEST_F(SlamOutputsTest, HandsBackTheFilesItsReportLists) {
+  const auto files = SlamOutputs(log_, Params(), result_, std::nullopt, 2);
+  std::vector<std::string> names;
+  for (const auto& f : files) names.push_back(f.name());
+  const std::vector<std::string> expected = {
+      "trajectory.txt", "trajectory.tum",     "map.yaml",    "map.pgm",
+      "map.png",        "map_trajectory.png", "report.json", "summary.txt"};
+  EXPECT_EQ(names, expected);
+  Write(files);
+  const proto::SlamReport report = ReadReport();
+  EXPECT_EQ(std::vector<std::string>(report.outputs().begin(), report.outputs().end()), expected);
+}
+
+TEST_F(SlamOutputsTest, TrajectoryFilesReadBackAsTheResultStampedWithTheScans) {
+  Write(SlamOutputs(log_, Params(), result_, std::nullopt, 2));
+  for (const char* name : {"trajectory.txt", "trajectory.tum"}) {
+    const std::vector<StampedPose> back = ReadTrajectory(dir_ / name);
+    ASSERT_EQ(back.size(), kScans) << name;
+    for (std::size_t i = 0; i < kScans; ++i) {
+      EXPECT_NEAR(back[i].timestamp, log_.scans[i].timestamp, 1e-6) << name << " " << i;
+      EXPECT_NEAR((back[i].pose.translation() - result_.trajectory[i].pose.translation()).norm(),
+                  0.0, 1e-6)
+          << name << " " << i;
+      EXPECT_NEAR(WrapAngle(back[i].pose.theta() - result_.trajectory[i].pose.theta()), 0.0, 1e-6)
+          << name << " " << i;
+    }
+  }
+}
+
+TEST_F(SlamOutputsTest, MapIsOccupiedWhereBeamsEndAndFreeWhereTheyPass) {
+  Write(SlamOutputs(log_, Params(), result_, std::nullopt, 2));
+  const OccupancyGrid map = ReadMapYaml(dir_ / "map.yaml");
+  EXPECT_DOUBLE_EQ(map.resolution(), 0.05);
+  std::size_t ends = 0, occupied = 0, passes = 0, free = 0;
+  for (std::size_t i = 0; i < kScans; ++i) {
+    const LaserScan& scan = log_.scans[i];
+    const Pose2& pose = result_.trajectory[i].pose;
+    for (const Eigen::Vector2d& end : ReturnPoints(scan)) {
+      const auto cell = map.WorldToCell(pose * end);
+      ASSERT_TRUE(cell) << "every return lies on the map";
+      ++ends;
+      occupied += map.state(cell->x(), cell->y()) == CellState::kOccupied;
+      if (end.norm() < 1.0) continue;
+      // Half a metre out along the beam, well clear of the wall it hit.
+      const auto near = map.WorldToCell(pose * (0.5 * end.normalized()));
+      ++passes;
+      free += map.state(near->x(), near->y()) == CellState::kFree;
+    }
+  }
+  ASSERT_GT(ends, 1000u);
+  // A cell a return ends in near its edge is crossed by other scans' beams that end in the cell
+  // beside it; their misses outweigh its hit in some 7 % of them.
+  EXPECT_GT(static_cast<double>(occupied) / ends, 0.9) << occupied << " of " << ends;
+  EXPECT_EQ(free, passes);
+}
+
+TEST_F(SlamOutputsTest, MapPngIsTheGridCellForCell) {
+  Write(SlamOutputs(log_, Params(), result_, std::nullopt, 2));
+  const OccupancyGrid map = ReadMapYaml(dir_ / "map.yaml");
+  const Image image = ReadPng(dir_ / "map.png");
+  ASSERT_EQ(image.width(), map.width());
+  ASSERT_EQ(image.height(), map.height());
+  int occupied = 0;
+  for (int y = 0; y < map.height(); ++y) {
+    for (int x = 0; x < map.width(); ++x) occupied += map.IsOccupied(x, y);
+  }
+  EXPECT_GT(occupied, 100);
+  EXPECT_EQ(CountPixels(image, {0, 0, 0}), occupied);
+}
+
+TEST_F(SlamOutputsTest, MapTrajectoryShowsEveryTrajectoryAndTheLoops) {
+  // Shifted across the straight route, so that the estimate does not hide the truth.
+  RssSlamResult shifted = ResultAtTruth(log_, {0.0, 0.6});
+  Write(SlamOutputs(log_, Params(), shifted, std::nullopt, 2));
+  const Image image = ReadPng(dir_ / "map_trajectory.png");
+  EXPECT_GE(std::max(image.width(), image.height()), 1590);
+  EXPECT_LE(std::max(image.width(), image.height()), 1602);
+  EXPECT_GT(CountPixels(image, kEstimateColor), 100);
+  EXPECT_GT(CountPixels(image, kTruthColor), 100);
+  EXPECT_GT(CountPixels(image, kOdometryColor), 100);
+  EXPECT_GT(CountPixels(image, kLoopColor), 100);
+  EXPECT_GT(CountPixels(image, {0, 0, 0}), 1000) << "the walls";
+
+  shifted.loops.clear();
+  Write(SlamOutputs(log_, Params(), shifted, std::nullopt, 2));
+  EXPECT_EQ(CountPixels(ReadPng(dir_ / "map_trajectory.png"), kLoopColor), 0);
+}
+
+TEST_F(SlamOutputsTest, ReportJsonHoldsTheRunAndItsErrors) {
+  Write(SlamOutputs(log_, Params(), result_, std::nullopt, 2));
+  const proto::SlamReport r = ReadReport();
+  EXPECT_EQ(r.params().SerializeAsString(), Params().SerializeAsString());
+  EXPECT_EQ(r.scans(), kScans);
+  EXPECT_EQ(r.local_evaluations(), 9000u);
+  EXPECT_EQ(r.global_evaluations(), 700u);
+  EXPECT_DOUBLE_EQ(r.times().detection_s(), 0.25);
+  EXPECT_DOUBLE_EQ(r.times().total_s(), 1.875);
+  EXPECT_DOUBLE_EQ(r.scans_per_second(), kScans / 1.875);
+  EXPECT_EQ(r.threads(), 2u);
+  EXPECT_NEAR(r.log_duration_s(), (kScans - 1) * SimulationOptions{}.scan_interval, 1e-6);
+
+  ASSERT_EQ(r.loops_size(), 1);
+  EXPECT_EQ(r.loops(0).earlier(), 2u);
+  EXPECT_EQ(r.loops(0).later(), 25u);
+  const Pose2& relative = result_.loops[0].constraint.relative;
+  ASSERT_EQ(r.loops(0).relative_size(), 3);
+  EXPECT_DOUBLE_EQ(r.loops(0).relative(0), relative.x());
+  EXPECT_DOUBLE_EQ(r.loops(0).relative(1), relative.y());
+  EXPECT_DOUBLE_EQ(r.loops(0).relative(2), relative.theta());
+  EXPECT_DOUBLE_EQ(r.loops(0).score(), 0.8);
+  ASSERT_EQ(r.global_searches_size(), 1);
+  const auto& g = r.global_searches(0);
+  EXPECT_EQ(g.first(), 2u);
+  EXPECT_EQ(g.last(), 26u);
+  EXPECT_TRUE(g.loop());
+  EXPECT_TRUE(g.applied());
+  EXPECT_EQ(g.evaluations(), 700u);
+  EXPECT_EQ(std::vector<double>(g.before().begin(), g.before().end()),
+            std::vector<double>({-3.0, 1.5}));
+  EXPECT_EQ(std::vector<double>(g.after().begin(), g.after().end()),
+            std::vector<double>({-3.25, 0.0}));
+
+  // The estimate is the truth; odometry drifts from it.
+  EXPECT_EQ(r.absolute_errors().poses(), kScans);
+  EXPECT_NEAR(r.absolute_errors().max_translation_m(), 0.0, 1e-12);
+  EXPECT_EQ(r.odometry_absolute_errors().poses(), kScans);
+  EXPECT_GT(r.odometry_absolute_errors().rms_translation_m(), 1e-3);
+  EXPECT_EQ(r.relation_errors().source(), "ground truth, consecutive scans");
+  EXPECT_EQ(r.relation_errors().relations(), kScans - 1);
+  EXPECT_NEAR(r.relation_errors().translation_mean_m(), 0.0, 1e-9);
+  EXPECT_EQ(r.odometry_relation_errors().relations(), kScans - 1);
+  EXPECT_GT(r.odometry_relation_errors().translation_mean_m(), 1e-4);
+}
+
+TEST_F(SlamOutputsTest, RelationsGivenAreTheOnesMeasured) {
+  // Scan 10 seen from scan 0 as the truth has it, but 10 cm further along.
+  const Pose2 truth = *log_.scans[0].true_pose;
+  const Pose2 later = *log_.scans[10].true_pose;
+  const NamedRelations relations{"office.relations",
+                                 {{log_.scans[0].timestamp, log_.scans[10].timestamp,
+                                   truth.inverse() * later * Pose2(0.1, 0, 0)}}};
+  const proto::SlamReport r = MakeSlamReport(log_, Params(), result_, relations, 1);
+  EXPECT_EQ(r.relation_errors().source(), "office.relations");
+  EXPECT_EQ(r.relation_errors().relations(), 1u);
+  EXPECT_NEAR(r.relation_errors().translation_mean_m(), 0.1, 1e-9);
+  EXPECT_EQ(r.odometry_relation_errors().source(), "office.relations");
+  EXPECT_EQ(r.odometry_relation_errors().relations(), 1u);
+}
+
+TEST_F(SlamOutputsTest, ALogWithoutTruthHasNoErrorsButTheSameFiles) {
+  Dataset log = log_;
+  for (LaserScan& s : log.scans) s.true_pose.reset();
+  const auto files = SlamOutputs(log, Params(), result_, std::nullopt, 1);
+  EXPECT_EQ(files.size(), 8u);
+  Write(files);
+  const proto::SlamReport r = ReadReport();
+  EXPECT_FALSE(r.has_absolute_errors());
+  EXPECT_FALSE(r.has_odometry_absolute_errors());
+  EXPECT_FALSE(r.has_relation_errors());
+  EXPECT_FALSE(r.has_odometry_relation_errors());
+}
+
+TEST_F(SlamOutputsTest, TheSameResultGivesTheSameBytes) {
+  const auto first = SlamOutputs(log_, Params(), result_, std::nullopt, 2);
+  const auto second = SlamOutputs(log_, Params(), result_, std::nullopt, 2);
+  ASSERT_EQ(first.size(), second.size());
+  for (std::size_t i = 0; i < first.size(); ++i) {
+    EXPECT_EQ(first[i].content(), second[i].content()) << first[i].name();
+  }
+}
+
+TEST_F(SlamOutputsTest, SummarySaysWhatRanWhatItFoundAndHowWell) {
+  const auto files = Write(SlamOutputs(log_, Params(), result_, std::nullopt, 2));
+  const std::string s = files.at("summary.txt");
+  EXPECT_EQ(s, FormatSlamSummary(ReadReport()));
+  for (const char* line : {
+           "SLAM (rss) over 30 scans of office-boxes.clf, 5.80 s of log",
+           "local search: PSO of 10 particles x 30 iterations on eval1, map cells 0.05 m",
+           "global search: on a loop or every 300 steps, 8 partitions, 2 islands of "
+           "mu+lambda-002 x 100 generations",
+           "time 1.88 s: local search 1.00 s, loop detection 0.25 s, global search 0.50 s "
+           "(16.00 scans/s, 2 threads)",
+           "fitness evaluations: 9000 local, 700 global",
+           "loops found: 1 (scan 25 back to 2, score 0.80)",
+           "global searches: 1, 1 applied",
+           "RMS error vs ground truth: x 0.00 cm, y 0.00 cm, heading 0.00 deg (max 0.00 cm)",
+           "relative error (ground truth, consecutive scans, 29 relations): 0.0000 +- 0.0000 m",
+       }) {
+    EXPECT_NE(s.find(line), std::string::npos) << line << "\n" << s;
+  }
+  EXPECT_EQ(s.find("odometry alone: x 0.00 cm"), std::string::npos) << "odometry drifts\n" << s;
+}
+
+TEST_F(SlamOutputsTest, AResultThatDoesNotFitTheLogIsAnError) {
+  Dataset shorter = log_;
+  shorter.scans.pop_back();
+  EXPECT_THROW(SlamOutputs(shorter, Params(), result_, std::nullopt, 1), Error);
+  RssSlamResult bad_loop = result_;
+  bad_loop.loops[0].constraint.later = kScans;
+  EXPECT_THROW(SlamOutputs(log_, Params(), bad_loop, std::nullopt, 1), Error);
+  RssSlamResult empty = result_;
+  empty.trajectory.clear();
+  empty.loops.clear();
+  EXPECT_THROW(SlamOutputs(log_, Params(), empty, std::nullopt, 1), Error);
+}
+
+}  // namespace
+}  // namespace evoslam

@@ -1,0 +1,153 @@
+#include "common/report/slam_report.h"
+
+#include <sstream>
+
+#include "common/eval/trajectory_errors.h"
+#include "common/util/error.h"
+
+namespace evoslam {
+
+proto::LoopClosureRecord ToProto(const LoopClosure& loop) {
+  proto::LoopClosureRecord p;
+  p.set_earlier(static_cast<std::uint32_t>(loop.constraint.earlier));
+  p.set_later(static_cast<std::uint32_t>(loop.constraint.later));
+  const Pose2& r = loop.constraint.relative;
+  for (double v : {r.x(), r.y(), r.theta()}) p.add_relative(v);
+  p.set_score(loop.score);
+  return p;
+}
+
+proto::GlobalSearchRecord ToProto(const GlobalSearchRecord& search) {
+  proto::GlobalSearchRecord p;
+  p.set_first(static_cast<std::uint32_t>(search.first));
+  p.set_last(static_cast<std::uint32_t>(search.last));
+  p.set_loop(search.loop.has_value());
+  p.set_applied(search.applied);
+  p.set_evaluations(search.evaluations);
+  p.set_seconds(search.seconds);
+  for (double v : search.before) p.add_before(v);
+  for (double v : search.after) p.add_after(v);
+  return p;
+}
+
+proto::SlamPhaseTimes ToProto(const SlamPhaseTimes& times) {
+  proto::SlamPhaseTimes p;
+  p.set_local_s(times.local);
+  p.set_detection_s(times.detection);
+  p.set_global_s(times.global);
+  p.set_total_s(times.total);
+  return p;
+}
+
+std::vector<StampedPose> ScanOdometry(const Dataset& dataset, std::size_t scans) {
+  std::vector<StampedPose> odometry;
+  odometry.reserve(scans);
+  for (std::size_t i = 0; i < scans; ++i) {
+    const LaserScan& s = dataset.scans.at(i);
+    odometry.push_back({s.timestamp, s.odometry});
+  }
+  return odometry;
+}
+
+proto::SlamReport MakeSlamReport(const Dataset& dataset, const proto::SlamParams& params,
+                                 const RssSlamResult& result,
+                                 const std::optional<NamedRelations>& relations,
+                                 std::uint32_t threads) {
+  const std::size_t n = result.trajectory.size();
+  if (n > dataset.scans.size()) {
+    throw Error("SLAM report: " + std::to_string(n) + " poses for the " +
+                std::to_string(dataset.scans.size()) + " scans of " + dataset.source);
+  }
+  proto::SlamReport report;
+  report.set_format_version(1);
+  report.set_evoslam_version(kEvoslamVersion);
+  *report.mutable_params() = params;
+  report.set_scans(static_cast<std::uint32_t>(n));
+  report.set_local_evaluations(result.local_evaluations);
+  report.set_global_evaluations(result.global_evaluations);
+  *report.mutable_times() = ToProto(result.times);
+  report.set_scans_per_second(result.times.total > 0 ? n / result.times.total : 0.0);
+  report.set_threads(threads);
+  for (const LoopClosure& loop : result.loops) *report.add_loops() = ToProto(loop);
+  for (const GlobalSearchRecord& g : result.global_searches) {
+    *report.add_global_searches() = ToProto(g);
+  }
+  if (n > 0) {
+    report.set_log_duration_s(dataset.scans[n - 1].timestamp - dataset.scans[0].timestamp);
+  }
+
+  const std::vector<StampedPose> truth = ScanTruth(dataset, n);
+  const std::vector<StampedPose> odometry = ScanOdometry(dataset, n);
+  if (!truth.empty()) {
+    *report.mutable_absolute_errors() = ToProto(ComputeAbsoluteErrors(result.trajectory, truth));
+    *report.mutable_odometry_absolute_errors() = ToProto(ComputeAbsoluteErrors(odometry, truth));
+  }
+  if (auto errors = RelationErrorsReport(result.trajectory, truth, relations)) {
+    *report.mutable_relation_errors() = std::move(*errors);
+  }
+  if (auto errors = RelationErrorsReport(odometry, truth, relations)) {
+    *report.mutable_odometry_relation_errors() = std::move(*errors);
+  }
+  return report;
+}
+
+namespace {
+
+void PrintSearches(std::ostream& s, const proto::SlamParams& p) {
+  s << "  local search: PSO of " << p.local_particles() << " particles x " << p.local_iterations()
+    << " iterations on " << p.local_fitness() << ", map cells " << p.resolution_m() << " m\n";
+  s << "  global search: ";
+  if (!p.global_search()) {
+    s << "off\n";
+    return;
+  }
+  s << (p.global_every() > 0 ? "on a loop or every " + std::to_string(p.global_every()) + " steps"
+                             : std::string("on a loop"))
+    << ", " << p.partitions() << " partitions, " << p.islands() << " islands of " << p.preset()
+    << " x " << p.generations() << " generations\n";
+}
+
+void PrintLoops(std::ostream& s, const proto::SlamReport& r) {
+  s << "  loops found: " << r.loops_size();
+  const char* separator = " (scan ";
+  for (const auto& loop : r.loops()) {
+    s << separator << loop.later() << " back to " << loop.earlier() << ", score " << loop.score();
+    separator = "; scan ";
+  }
+  s << (r.loops().empty() ? "\n" : ")\n");
+  int applied = 0;
+  for (const auto& g : r.global_searches()) applied += g.applied();
+  s << "  global searches: " << r.global_searches_size() << ", " << applied << " applied\n";
+}
+
+}  // namespace
+
+std::string FormatSlamSummary(const proto::SlamReport& r) {
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(2);
+  const auto& p = r.params();
+  s << "SLAM (" << p.method() << ") over " << r.scans() << " scans of " << p.log() << ", "
+    << r.log_duration_s() << " s of log\n";
+  PrintSearches(s, p);
+  const auto& t = r.times();
+  s << "  time " << t.total_s() << " s: local search " << t.local_s() << " s, loop detection "
+    << t.detection_s() << " s, global search " << t.global_s() << " s (" << r.scans_per_second()
+    << " scans/s, " << r.threads() << " threads)\n";
+  s << "  fitness evaluations: " << r.local_evaluations() << " local, " << r.global_evaluations()
+    << " global\n";
+  PrintLoops(s, r);
+  if (r.has_absolute_errors()) {
+    s << "  RMS error vs ground truth: " << FormatAbsoluteErrors(r.absolute_errors())
+      << "\n    odometry alone: " << FormatAbsoluteErrors(r.odometry_absolute_errors()) << "\n";
+  }
+  if (r.has_relation_errors()) {
+    const auto& e = r.relation_errors();
+    s << "  relative error (" << e.source() << ", " << e.relations()
+      << " relations): " << FormatRelationErrors(e)
+      << "\n    odometry alone: " << FormatRelationErrors(r.odometry_relation_errors()) << "\n";
+  }
+  return s.str();
+}
+
+}  // namespace evoslam
