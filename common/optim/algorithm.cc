@@ -1,6 +1,8 @@
 #include "common/optim/algorithm.h"
 
 #include <cmath>
+#include <optional>
+#include <string>
 
 #include "common/util/error.h"
 
@@ -66,6 +68,12 @@ void Algorithm::DoInitialize(const Problem& problem, Rng& rng) {
   for (Eigen::Index i = 0; i < x.cols(); ++i) {
     for (Eigen::Index j = 0; j < x.rows(); ++j) x(j, i) = rng.Uniform(lo(j), hi(j));
     Conform(problem, x.col(i));
+  }
+  if (const std::optional<Eigen::VectorXd> start = problem.start(); start && x.cols() > 0) {
+    if (start->size() != x.rows())
+      throw Error(std::string(name()) + ": the start has the wrong size");
+    x.col(0) = *start;
+    Conform(problem, x.col(0));
   }
   population_.x = std::move(x);
   Evaluate(problem, population_.x, population_.f);

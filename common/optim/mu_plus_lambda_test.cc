@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <memory>
+#include <optional>
 #include <set>
 #include <vector>
 
@@ -412,6 +413,42 @@ TEST(MuPlusLambdaTest, VarianceStopNeedsEveryObjective) {
   Rng rng(14);
   ea.Initialize(problem, rng);
   EXPECT_FALSE(ea.Converged());
+}
+
+// A 20-dimensional sphere centred far from where random draws land, that knows a good start.
+class SphereWithStart : public FunctionProblem {
+ public:
+  SphereWithStart()
+      : FunctionProblem(Eigen::VectorXd::Constant(20, -10.0), Eigen::VectorXd::Constant(20, 10.0),
+                        [](const Eigen::Ref<const Eigen::VectorXd>& x) {
+                          return (x.array() - 9.0).square().sum();
+                        }) {}
+  std::optional<Eigen::VectorXd> start() const override {
+    return Eigen::VectorXd::Constant(20, 8.9);
+  }
+};
+
+TEST(MuPlusLambdaTest, FirstPopulationHoldsTheProblemsStartAndTheSearchGoesOnFromIt) {
+  const SphereWithStart problem;
+  const FunctionProblem plain(
+      problem.lower(), problem.upper(),
+      [](const Eigen::Ref<const Eigen::VectorXd>& x) { return (x.array() - 9.0).square().sum(); });
+  MuPlusLambdaEa started(Generic()), fresh(Generic());
+  Rng rng(3), rng_fresh(3);
+  started.Initialize(problem, rng);
+  fresh.Initialize(plain, rng_fresh);
+  EXPECT_TRUE(started.population().x.col(0).isApproxToConstant(8.9));
+  const double start_fitness = 20 * 0.1 * 0.1;
+  EXPECT_NEAR(started.population().f.minCoeff(), start_fitness, 1e-12);
+  EXPECT_GT(fresh.population().f.minCoeff(), 100 * start_fitness);
+  // The rest of the first population is drawn as without a start.
+  EXPECT_EQ(started.population().x.rightCols(9), fresh.population().x.rightCols(9));
+  for (int g = 0; g < 30; ++g) {
+    started.Step(problem, rng);
+    fresh.Step(plain, rng_fresh);
+  }
+  EXPECT_LE(started.champion_f()(0), start_fitness + 1e-12);
+  EXPECT_LT(started.population().f.minCoeff(), fresh.population().f.minCoeff());
 }
 
 TEST(MuPlusLambdaTest, OddLambdaMakesExactlyLambdaChildren) {

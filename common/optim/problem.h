@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <optional>
 #include <span>
 
 namespace evoslam {
@@ -26,6 +27,10 @@ class Problem {
   virtual const Eigen::VectorXd& upper() const = 0;
   virtual Encoding encoding() const { return Encoding::kReal; }
   virtual std::size_t objectives() const { return 1; }
+
+  // A candidate known before the search, such as the solution as it stands, that the first
+  // population should hold so that an elitist search cannot end worse; empty when there is none.
+  virtual std::optional<Eigen::VectorXd> start() const { return std::nullopt; }
 
   // Problem knowledge for the immune MOEA's vaccination; nullptr when the problem has none.
   virtual const Immunity* immunity() const { return nullptr; }
