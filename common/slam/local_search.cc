@@ -36,11 +36,8 @@ HitCountGrid EmptyMapFor(const Dataset& dataset, const LocalSearchParams& params
                       static_cast<int>(std::ceil(size.y() / params.resolution)) + 1);
 }
 
-LocalSearchResult RunLocalSearch(const Dataset& dataset, const LocalSearchParams& params,
-                                 std::uint64_t seed, HitCountGrid& map,
-                                 const std::function<void(std::size_t, std::size_t)>& progress) {
-  ValidateLocalSearchParams(params);
-  if (dataset.scans.empty()) throw Error(dataset.source + ": the log has no laser scans");
+StepCorrection CorrectStep(const HitCountGrid& map, const LaserScan& scan, const Pose2& predicted,
+                           const LocalSearchParams& params, Rng rng) {
   PsoParams pso;
   pso.particles = params.particles;
   pso.inertia = params.inertia;
@@ -48,8 +45,18 @@ LocalSearchResult RunLocalSearch(const Dataset& dataset, const LocalSearchParams
   pso.c2 = params.c2;
   StopCriteria stop;
   stop.max_generations = params.iterations;
-  const Rng root(seed);
+  const StepCorrectionProblem problem(map, scan, predicted, params.max_error, params.fitness);
+  ParticleSwarm swarm(pso);
+  const OptimResult r = Minimize(problem, swarm, stop, rng);
+  return {problem.Corrected(r.best), r.evaluations};
+}
 
+LocalSearchResult RunLocalSearch(const Dataset& dataset, const LocalSearchParams& params,
+                                 std::uint64_t seed, HitCountGrid& map,
+                                 const std::function<void(std::size_t, std::size_t)>& progress) {
+  ValidateLocalSearchParams(params);
+  if (dataset.scans.empty()) throw Error(dataset.source + ": the log has no laser scans");
+  const Rng root(seed);
   LocalSearchResult result;
   const std::size_t n = dataset.scans.size();
   result.trajectory.reserve(n);
@@ -58,13 +65,9 @@ LocalSearchResult RunLocalSearch(const Dataset& dataset, const LocalSearchParams
     const LaserScan& scan = dataset.scans[i];
     if (i > 0) {
       const Pose2 step = dataset.scans[i - 1].odometry.inverse() * scan.odometry;
-      const Pose2 predicted = pose * step;
-      const StepCorrectionProblem problem(map, scan, predicted, params.max_error, params.fitness);
-      ParticleSwarm swarm(pso);
-      Rng rng = root.Stream(i);
-      const OptimResult r = Minimize(problem, swarm, stop, rng);
-      pose = problem.Corrected(r.best);
-      result.evaluations += r.evaluations;
+      const StepCorrection c = CorrectStep(map, scan, pose * step, params, root.Stream(i));
+      pose = c.pose;
+      result.evaluations += c.evaluations;
     }
     map.AddScan(scan, pose);
     result.trajectory.push_back({scan.timestamp, pose});

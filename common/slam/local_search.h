@@ -12,6 +12,7 @@
 #include "common/optim/particle_swarm.h"
 #include "common/sensor/dataset.h"
 #include "common/slam/step_correction_problem.h"
+#include "common/util/random.h"
 
 namespace evoslam {
 
@@ -36,6 +37,15 @@ void ValidateLocalSearchParams(const LocalSearchParams& params);
 // The map a log's scans can reach: the odometry's path widened by the laser's range and
 // params.margin.
 HitCountGrid EmptyMapFor(const Dataset& dataset, const LocalSearchParams& params);
+
+// One step of the local search: the pose of `scan` corrected from `predicted` against `map`
+// (which it leaves unchanged), and the evaluations it took.
+struct StepCorrection {
+  Pose2 pose;
+  std::size_t evaluations = 0;
+};
+StepCorrection CorrectStep(const HitCountGrid& map, const LaserScan& scan, const Pose2& predicted,
+                           const LocalSearchParams& params, Rng rng);
 
 struct LocalSearchResult {
   std::vector<StampedPose> trajectory;  // one pose per scan, the laser's

@@ -29,6 +29,12 @@ struct RssSlamParams {
   std::size_t global_every = 300;  // k; 0: only on a detected loop
   // A global search covers at most this many steps back (0: all since the last one).
   std::size_t max_stretch = 0;
+  // A search's bounds on each partition's error (m, m, rad). A loop's search may correct up to
+  // loop_bound_scale times the loop's discrepancy plus refine_error, within global.max_error; a
+  // periodic search (no loop) refines within refine_error. Bounds sized to the error at hand keep
+  // the first population near the trajectory, which is close to right.
+  Eigen::Vector3d refine_error{0.05, 0.05, 0.01};
+  double loop_bound_scale = 1.5;
   std::size_t generations = 100;  // 002
   std::size_t islands = 2;        // each runs 002's (mu+lambda) preset
   std::string preset = "mu+lambda-002";
@@ -84,7 +90,12 @@ struct GlobalSearchTask {
   std::size_t first = 0, last = 0;
   std::span<const Pose2> poses;  // scans [0, last)
   std::optional<LoopConstraint> loop;
+  Eigen::Vector3d max_error = Eigen::Vector3d::Zero();  // each partition's, as bounded for this
 };
+
+// The bounds of a global search over `poses` for `loop` (none: a periodic search).
+Eigen::Vector3d GlobalSearchBounds(const RssSlamParams& params, std::span<const Pose2> poses,
+                                   const std::optional<LoopConstraint>& loop);
 
 // Where the global searches run and what the run reports. The defaults run it here.
 struct RssSlamRuntime {

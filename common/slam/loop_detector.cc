@@ -1,0 +1,79 @@
+#include "common/slam/loop_detector.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "common/slam/place_matcher.h"
+#include "common/util/error.h"
+
+namespace evoslam {
+namespace {
+
+constexpr double kFieldResolution = 0.05;  // m
+constexpr double kFieldSigma = 0.1;        // m: a few cells, so the coarse lattice sees the peak
+
+}  // namespace
+
+void ValidateLoopDetectionParams(const LoopDetectionParams& p) {
+  if (!(p.revisit_radius > 0.0)) throw Error("loop detection: the revisit radius must be > 0");
+  if (p.min_gap == 0) throw Error("loop detection: the gap between visits must be >= 1 scan");
+  if (!(p.min_travel >= 0.0)) throw Error("loop detection: the travel must not be negative");
+  if (!(p.match_window > 0.0) || !(p.match_window_theta > 0.0))
+    throw Error("loop detection: the match window must be positive");
+  if (!(p.min_score > 0.0 && p.min_score <= 1.0))
+    throw Error("loop detection: the match score threshold must be in (0, 1]");
+  if (!(p.fit_tolerance >= 0.0) || !(p.fit_tolerance_theta >= 0.0))
+    throw Error("loop detection: the fit tolerances must not be negative");
+}
+
+std::optional<LoopClosure> DetectLoop(std::span<const LaserScan> scans,
+                                      std::span<const Pose2> poses, std::size_t current,
+                                      const LoopDetectionParams& params) {
+  if (current >= poses.size() || current >= scans.size()) {
+    throw Error("loop detection: scan " + std::to_string(current) + " has no pose");
+  }
+  if (current < params.min_gap) return std::nullopt;
+  const Eigen::Vector2d here = poses[current].translation();
+
+  // The closest earlier pose within the radius, at least min_gap scans and min_travel metres
+  // back along the path.
+  const std::size_t newest = current - params.min_gap;
+  double travelled = 0.0;
+  for (std::size_t k = current; k > newest; --k) {
+    travelled += (poses[k].translation() - poses[k - 1].translation()).norm();
+  }
+  std::optional<std::size_t> earlier;
+  double closest = params.revisit_radius;
+  for (std::size_t j = newest + 1; j-- > 0;) {
+    if (j < newest) travelled += (poses[j + 1].translation() - poses[j].translation()).norm();
+    if (travelled < params.min_travel) continue;
+    const double d = (poses[j].translation() - here).norm();
+    if (d < closest) {
+      closest = d;
+      earlier = j;
+    }
+  }
+  if (!earlier) return std::nullopt;
+
+  // The earlier place's map: scans around it, none from the recent path.
+  const std::size_t lo = *earlier > params.place_scans ? *earlier - params.place_scans : 0;
+  const std::size_t hi = std::min(*earlier + params.place_scans + 1, newest + 1);
+  const PlaceMatcher place(scans.subspan(lo, hi - lo), poses.subspan(lo, hi - lo), kFieldResolution,
+                           kFieldSigma, params.match_window);
+  const std::vector<Eigen::Vector2d> points = ReturnPoints(scans[current]);
+  const PlaceMatcher::Match match =
+      place.Search(points, poses[current], params.match_window, params.match_window_theta);
+  if (match.score < params.min_score) return std::nullopt;
+
+  // Does the scan fit where the trajectory puts it?
+  const Pose2 shift = poses[current].inverse() * match.pose;
+  if (shift.translation().norm() <= params.fit_tolerance &&
+      std::abs(shift.theta()) <= params.fit_tolerance_theta) {
+    return std::nullopt;
+  }
+  return LoopClosure{{*earlier, current, poses[*earlier].inverse() * match.pose}, match.score};
+}
+
+}  // namespace evoslam

@@ -1,0 +1,172 @@
+#include "common/slam/slam_params.h"
+
+#include <string>
+
+#include "common/util/error.h"
+
+namespace evoslam {
+namespace {
+
+Eigen::Vector3d Triple(const google::protobuf::RepeatedField<double>& values,
+                       const Eigen::Vector3d& fallback, const char* name) {
+  if (values.empty()) return fallback;
+  if (values.size() != 3) {
+    throw Error(std::string("SLAM parameter ") + name + ": 3 values (x, y, theta) are needed, " +
+                std::to_string(values.size()) + " given");
+  }
+  return {values[0], values[1], values[2]};
+}
+
+void SetTriple(google::protobuf::RepeatedField<double>* out, const Eigen::Vector3d& v) {
+  out->Clear();
+  for (int i = 0; i < 3; ++i) out->Add(v(i));
+}
+
+}  // namespace
+
+RssSlamParams RssSlamParamsFromProto(const proto::SlamParams& p) {
+  if (p.has_method() && p.method() != "rss") {
+    throw Error("SLAM method '" + p.method() + "' is not known (rss)");
+  }
+  RssSlamParams r;
+  if (p.has_max_scans()) r.max_scans = p.max_scans();
+  LocalSearchParams& l = r.local;
+  if (p.has_local_fitness()) l.fitness = ParseLocalFitness(p.local_fitness());
+  l.max_error = Triple(p.local_max_error(), l.max_error, "local_max_error");
+  if (p.has_local_particles()) l.particles = p.local_particles();
+  if (p.has_local_iterations()) l.iterations = p.local_iterations();
+  if (p.has_local_inertia()) l.inertia = p.local_inertia();
+  if (p.has_local_c1()) l.c1 = p.local_c1();
+  if (p.has_local_c2()) l.c2 = p.local_c2();
+  if (p.has_resolution_m()) l.resolution = p.resolution_m();
+  if (p.has_margin_m()) l.margin = p.margin_m();
+  if (p.has_local_only()) r.global_search = !p.local_only();
+  if (p.has_global_every()) r.global_every = p.global_every();
+  GlobalSearchParams& g = r.global;
+  if (p.has_partitions()) g.partitions = p.partitions();
+  g.max_error = Triple(p.global_max_error(), g.max_error, "global_max_error");
+  g.sigma = Triple(p.sigma(), g.sigma, "sigma");
+  if (p.has_w1()) g.w1 = p.w1();
+  if (p.has_w2()) g.w2 = p.w2();
+  if (p.has_generations()) r.generations = p.generations();
+  if (p.has_islands()) r.islands = p.islands();
+  if (p.has_preset()) r.preset = p.preset();
+  if (p.has_max_stretch()) r.max_stretch = p.max_stretch();
+  r.refine_error = Triple(p.refine_error(), r.refine_error, "refine_error");
+  if (p.has_loop_bound_scale()) r.loop_bound_scale = p.loop_bound_scale();
+  LoopDetectionParams& d = r.loops;
+  if (p.has_revisit_radius_m()) d.revisit_radius = p.revisit_radius_m();
+  if (p.has_min_gap_scans()) d.min_gap = p.min_gap_scans();
+  if (p.has_min_travel_m()) d.min_travel = p.min_travel_m();
+  if (p.has_match_window_m()) d.match_window = p.match_window_m();
+  if (p.has_match_window_rad()) d.match_window_theta = p.match_window_rad();
+  if (p.has_min_match_score()) d.min_score = p.min_match_score();
+  if (p.has_fit_tolerance_m()) d.fit_tolerance = p.fit_tolerance_m();
+  if (p.has_fit_tolerance_rad()) d.fit_tolerance_theta = p.fit_tolerance_rad();
+  if (p.has_place_scans()) d.place_scans = p.place_scans();
+  if (p.has_cooldown_scans()) d.cooldown = p.cooldown_scans();
+  ValidateRssSlamParams(r);
+  return r;
+}
+
+proto::SlamParams CompleteSlamParams(const proto::SlamParams& given) {
+  const RssSlamParams r = RssSlamParamsFromProto(given);
+  proto::SlamParams p = given;
+  p.set_method("rss");
+  p.set_seed(given.has_seed() ? given.seed() : 1);
+  p.set_lenient(given.lenient());
+  p.set_log(given.log());
+  p.set_max_scans(static_cast<std::uint32_t>(r.max_scans));
+  const LocalSearchParams& l = r.local;
+  p.set_local_fitness(std::string(LocalFitnessName(l.fitness)));
+  SetTriple(p.mutable_local_max_error(), l.max_error);
+  p.set_local_particles(static_cast<std::uint32_t>(l.particles));
+  p.set_local_iterations(static_cast<std::uint32_t>(l.iterations));
+  p.set_local_inertia(l.inertia);
+  p.set_local_c1(l.c1);
+  p.set_local_c2(l.c2);
+  p.set_resolution_m(l.resolution);
+  p.set_margin_m(l.margin);
+  p.set_local_only(!r.global_search);
+  p.set_global_every(static_cast<std::uint32_t>(r.global_every));
+  const GlobalSearchParams& g = r.global;
+  p.set_partitions(static_cast<std::uint32_t>(g.partitions));
+  SetTriple(p.mutable_global_max_error(), g.max_error);
+  SetTriple(p.mutable_sigma(), g.sigma);
+  p.set_w1(g.w1);
+  p.set_w2(g.w2);
+  p.set_generations(static_cast<std::uint32_t>(r.generations));
+  p.set_islands(static_cast<std::uint32_t>(r.islands));
+  p.set_preset(r.preset);
+  p.set_max_stretch(static_cast<std::uint32_t>(r.max_stretch));
+  SetTriple(p.mutable_refine_error(), r.refine_error);
+  p.set_loop_bound_scale(r.loop_bound_scale);
+  const LoopDetectionParams& d = r.loops;
+  p.set_revisit_radius_m(d.revisit_radius);
+  p.set_min_gap_scans(static_cast<std::uint32_t>(d.min_gap));
+  p.set_min_travel_m(d.min_travel);
+  p.set_match_window_m(d.match_window);
+  p.set_match_window_rad(d.match_window_theta);
+  p.set_min_match_score(d.min_score);
+  p.set_fit_tolerance_m(d.fit_tolerance);
+  p.set_fit_tolerance_rad(d.fit_tolerance_theta);
+  p.set_place_scans(static_cast<std::uint32_t>(d.place_scans));
+  p.set_cooldown_scans(static_cast<std::uint32_t>(d.cooldown));
+  return p;
+}
+
+proto::GlobalSearchSpec ToProto(const GlobalSearchTask& task) {
+  proto::GlobalSearchSpec spec;
+  spec.set_index(task.index);
+  spec.set_first(task.first);
+  spec.set_last(task.last);
+  for (std::size_t k = 0; k < task.last && k < task.poses.size(); ++k) {
+    spec.add_x(task.poses[k].x());
+    spec.add_y(task.poses[k].y());
+    spec.add_theta(task.poses[k].theta());
+  }
+  if (task.loop) {
+    proto::LoopClosureRecord& loop = *spec.mutable_loop();
+    loop.set_earlier(static_cast<std::uint32_t>(task.loop->earlier));
+    loop.set_later(static_cast<std::uint32_t>(task.loop->later));
+    const Pose2& r = task.loop->relative;
+    for (double v : {r.x(), r.y(), r.theta()}) loop.add_relative(v);
+  }
+  SetTriple(spec.mutable_max_error(), task.max_error);
+  return spec;
+}
+
+GlobalSearchTask GlobalSearchTaskFromProto(const proto::GlobalSearchSpec& spec,
+                                           std::vector<Pose2>& poses) {
+  const auto n = static_cast<std::size_t>(spec.x_size());
+  if (spec.y_size() != spec.x_size() || spec.theta_size() != spec.x_size()) {
+    throw Error("global search task: x, y and theta differ in length");
+  }
+  if (!(spec.first() < spec.last()) || spec.last() != n) {
+    throw Error("global search task: scans [" + std::to_string(spec.first()) + ", " +
+                std::to_string(spec.last()) + ") with " + std::to_string(n) + " poses");
+  }
+  poses.clear();
+  poses.reserve(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto i = static_cast<int>(k);
+    poses.emplace_back(spec.x(i), spec.y(i), spec.theta(i));
+  }
+  GlobalSearchTask task;
+  task.index = spec.index();
+  task.first = spec.first();
+  task.last = spec.last();
+  task.poses = poses;
+  if (spec.has_loop()) {
+    const proto::LoopClosureRecord& loop = spec.loop();
+    if (loop.relative_size() != 3 || !(loop.earlier() < loop.later()) || loop.later() >= n) {
+      throw Error("global search task: the loop does not fit its poses");
+    }
+    task.loop = LoopConstraint{loop.earlier(), loop.later(),
+                               Pose2(loop.relative(0), loop.relative(1), loop.relative(2))};
+  }
+  task.max_error = Triple(spec.max_error(), Eigen::Vector3d::Zero(), "max_error");
+  return task;
+}
+
+}  // namespace evoslam
