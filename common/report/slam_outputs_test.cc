@@ -43,7 +43,6 @@ proto::SlamParams Params() {
   p.set_local_particles(10);
   p.set_local_iterations(30);
   p.set_resolution_m(0.05);
-  p.set_global_search(true);
   p.set_global_every(300);
   p.set_partitions(8);
   p.set_islands(2);

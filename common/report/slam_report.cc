@@ -1,5 +1,7 @@
 #include "common/report/slam_report.h"
 
+#include "common/slam/slam_params.h"
+
 #include <sstream>
 
 #include "common/eval/trajectory_errors.h"
@@ -61,7 +63,7 @@ proto::SlamReport MakeSlamReport(const Dataset& dataset, const proto::SlamParams
   proto::SlamReport report;
   report.set_format_version(1);
   report.set_evoslam_version(kEvoslamVersion);
-  *report.mutable_params() = params;
+  *report.mutable_params() = CompleteSlamParams(params);
   report.set_scans(static_cast<std::uint32_t>(n));
   report.set_local_evaluations(result.local_evaluations);
   report.set_global_evaluations(result.global_evaluations);
@@ -97,7 +99,7 @@ void PrintSearches(std::ostream& s, const proto::SlamParams& p) {
   s << "  local search: PSO of " << p.local_particles() << " particles x " << p.local_iterations()
     << " iterations on " << p.local_fitness() << ", map cells " << p.resolution_m() << " m\n";
   s << "  global search: ";
-  if (!p.global_search()) {
+  if (p.local_only()) {
     s << "off\n";
     return;
   }
