@@ -17,6 +17,7 @@
 #include "common/sim/simulator.h"
 #include "common/sim/world.h"
 #include "common/slam/local_search.h"
+#include "common/slam/slam_params.h"
 #include "common/util/error.h"
 #include "common/util/scratch_dir.h"
 
@@ -205,7 +206,11 @@ TEST_F(SlamOutputsTest, MapTrajectoryShowsEveryTrajectoryAndTheLoops) {
 TEST_F(SlamOutputsTest, ReportJsonHoldsTheRunAndItsErrors) {
   Write(SlamOutputs(log_, Params(), result_, std::nullopt, 2));
   const proto::SlamReport r = ReadReport();
-  EXPECT_EQ(r.params().SerializeAsString(), Params().SerializeAsString());
+  // Every setting as it ran: those given, and the defaults of the rest.
+  EXPECT_EQ(r.params().SerializeAsString(), CompleteSlamParams(Params()).SerializeAsString());
+  EXPECT_EQ(r.params().seed(), 7u);
+  EXPECT_EQ(r.params().partitions(), 8u);
+  EXPECT_TRUE(r.params().has_min_match_score());
   EXPECT_EQ(r.scans(), kScans);
   EXPECT_EQ(r.local_evaluations(), 9000u);
   EXPECT_EQ(r.global_evaluations(), 700u);

@@ -1,10 +1,9 @@
 #include "common/report/slam_report.h"
 
-#include "common/slam/slam_params.h"
-
 #include <sstream>
 
 #include "common/eval/trajectory_errors.h"
+#include "common/slam/slam_params.h"
 #include "common/util/error.h"
 
 namespace evoslam {
