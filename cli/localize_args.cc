@@ -95,17 +95,6 @@ void AddLocalizeJobOptions(CLI::App* cmd, LocalizeArgs& a, bool with_islands) {
   cmd->add_option("--seed", a.seed, "random seed");
 }
 
-void AddLocalizeRunOptions(CLI::App* cmd, LocalizeArgs& a) {
-  cmd->add_option("--threads", a.threads,
-                  "embedded: threads per worker (default: the cores shared among the workers)")
-      ->check(CLI::Range(1, 1024));
-  cmd->add_option("--workers", a.workers,
-                  "embedded: workers in this process (default: one per island, at most one "
-                  "per core)")
-      ->check(CLI::Range(1, 1024));
-  AddServiceOptions(cmd, a.service, true);
-}
-
 void NoteGivenOptions(const CLI::App* cmd, LocalizeArgs& a) {
   for (const CLI::Option* option : cmd->get_options()) {
     if (option->count() > 0) a.given.insert(option->get_name());

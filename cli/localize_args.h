@@ -7,7 +7,7 @@
 #include <set>
 #include <string>
 
-#include "cli/service_options.h"
+#include "cli/job_run.h"
 #include "common/localization/localizer.h"
 #include "common/optim/particle_swarm.h"
 #include "common/service/service_client.h"
@@ -17,7 +17,7 @@ namespace evoslam::cli {
 
 // The command line of a localization job, shared by `localize` and `tune`.
 struct LocalizeArgs {
-  std::string map, map_from_log, log, out, start, relations;
+  std::string map, map_from_log, log, start, relations;
   std::string fitness = "f3", estimator = "2d", optimizer = "de", strategy = "rand1exp";
   std::size_t pop = 25, gen = 25, max_scans = 0;
   double f = 0.6, cr = 0.9, window = 0.6, heading_window = 30.0, heading_step = 0.5;
@@ -31,16 +31,12 @@ struct LocalizeArgs {
   std::set<std::string> given;  // options set on the command line, which override a preset
   double exhaustive_step = 0.01, max_range = 0.0, grid_resolution = 0.05;
   std::uint64_t seed = 1;
-  bool use_odometry = false, lenient = false, detach = false;
-  int threads = 0;
-  std::size_t workers = 0;
-  ServiceArgs service;
+  bool use_odometry = false, lenient = false;
+  JobRunArgs run;
 };
 
 // Adds the job's options to `cmd` (--islands too unless the command sets it itself).
 void AddLocalizeJobOptions(CLI::App* cmd, LocalizeArgs& a, bool with_islands);
-// Adds --threads and --workers (embedded) and the service options.
-void AddLocalizeRunOptions(CLI::App* cmd, LocalizeArgs& a);
 // Records which options were given, so they override a preset.
 void NoteGivenOptions(const CLI::App* cmd, LocalizeArgs& a);
 

@@ -92,7 +92,7 @@ void RunTune(const TuneArgs& t) {
     a.pop = std::max<std::size_t>(4, (t.total_pop + n / 2) / n);
     a.given.insert("--pop");
     CountResult r{n, a.pop, {}};
-    ServiceSession session(a.service, ChooseEmbeddedLayout(n, a.workers, a.threads));
+    ServiceSession session(a.run.service, ChooseEmbeddedLayout(n, a.run.workers, a.run.threads));
     for (std::size_t s = 0; s < t.seeds; ++s) {
       a.seed = t.job.seed + s;
       const LocalizeOptions options = OptionsFrom(a);
@@ -165,7 +165,7 @@ void AddTuneCommand(CLI::App& app) {
       "recommend a count for this host");
   auto t = std::make_shared<TuneArgs>();
   AddLocalizeJobOptions(cmd, t->job, false);
-  AddLocalizeRunOptions(cmd, t->job);
+  AddJobRunOptions(cmd, t->job.run);
   cmd->add_option("--islands", t->islands, "island counts to try, e.g. 1,2,4,8")
       ->capture_default_str();
   cmd->add_option("--seeds", t->seeds, "runs per island count, seeds --seed, --seed + 1, ...")
