@@ -20,7 +20,7 @@ void AddLocalizeJobOptions(CLI::App* cmd, LocalizeArgs& a, bool with_islands) {
   cmd->add_option("--map-from-log", a.map_from_log,
                   "build an occupancy grid from this log's reference poses instead");
   cmd->add_option("--grid-resolution", a.grid_resolution, "cell size for --map-from-log, m")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveNumber());
   cmd->add_option("--log", a.log, "CARMEN log to localize")->required();
   cmd->add_option("--start", a.start,
                   "start pose x,y,theta (m, m, rad); default: first scan's pose");
@@ -58,7 +58,7 @@ void AddLocalizeJobOptions(CLI::App* cmd, LocalizeArgs& a, bool with_islands) {
       ->check(CLI::IsMember({"two-point", "uniform"}));
   cmd->add_option("--ga-grid", a.ga_grid,
                   "SGA and aGA: search grid of the binary chromosomes, m (0: none)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegativeNumber());
   cmd->add_option("--ga-bit-flip", a.ga_bit_flip,
                   "SGA and aGA: probability of flipping each bit of a child (003: 0)")
       ->check(CLI::Range(0.0, 1.0));
@@ -80,16 +80,16 @@ void AddLocalizeJobOptions(CLI::App* cmd, LocalizeArgs& a, bool with_islands) {
                   "--optimizer island: which individuals leave and which they replace")
       ->check(CLI::IsMember({"best-replace-worst", "random-replace"}));
   cmd->add_option("--window", a.window, "side of the square search window, m")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveNumber());
   cmd->add_option("--heading-window", a.heading_window, "heading search half-width, degrees")
       ->check(CLI::Range(0.0, 180.0));
   cmd->add_option("--heading-step", a.heading_step, "heading step, degrees")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveNumber());
   cmd->add_option("--exhaustive-step", a.exhaustive_step,
                   "lattice spacing of --optimizer exhaustive, m")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveNumber());
   cmd->add_option("--max-range", a.max_range, "simulation range limit, m (default: the scan's)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegativeNumber());
   cmd->add_option("--max-scans", a.max_scans, "localize only the first N scans");
   cmd->add_option("--relations", a.relations, "relations file for the relative error");
   cmd->add_option("--seed", a.seed, "random seed");

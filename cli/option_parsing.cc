@@ -1,29 +1,134 @@
 #include "cli/option_parsing.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "common/util/error.h"
 
 namespace evoslam::cli {
+namespace {
+
+namespace pb = google::protobuf;
+
+// The comma-separated pieces of `text` ("" gives one empty piece).
+std::vector<std::string_view> SplitCommas(std::string_view text) {
+  std::vector<std::string_view> pieces;
+  std::size_t begin = 0;
+  while (true) {
+    const std::size_t end = std::min(text.find(',', begin), text.size());
+    pieces.push_back(text.substr(begin, end - begin));
+    if (end == text.size()) return pieces;
+    begin = end + 1;
+  }
+}
+
+template <typename T>
+std::optional<T> ParseNumber(std::string_view text) {
+  T v{};
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || ptr != text.data() + text.size()) return std::nullopt;
+  if constexpr (std::is_floating_point_v<T>) {
+    if (!std::isfinite(v)) return std::nullopt;
+  }
+  return v;
+}
+
+std::optional<bool> ParseBool(std::string_view text) {
+  if (text == "true" || text == "1") return true;
+  if (text == "false" || text == "0") return false;
+  return std::nullopt;
+}
+
+// Sets (or, for a repeated field, appends) one value; false when it does not parse.
+bool SetOne(pb::Message& m, const pb::FieldDescriptor* f, std::string_view text) {
+  const pb::Reflection& r = *m.GetReflection();
+  const bool rep = f->is_repeated();
+  switch (f->cpp_type()) {
+    case pb::FieldDescriptor::CPPTYPE_DOUBLE:
+      if (const auto v = ParseNumber<double>(text)) {
+        rep ? r.AddDouble(&m, f, *v) : r.SetDouble(&m, f, *v);
+        return true;
+      }
+      return false;
+    case pb::FieldDescriptor::CPPTYPE_UINT32:
+      if (const auto v = ParseNumber<std::uint32_t>(text)) {
+        rep ? r.AddUInt32(&m, f, *v) : r.SetUInt32(&m, f, *v);
+        return true;
+      }
+      return false;
+    case pb::FieldDescriptor::CPPTYPE_UINT64:
+      if (const auto v = ParseNumber<std::uint64_t>(text)) {
+        rep ? r.AddUInt64(&m, f, *v) : r.SetUInt64(&m, f, *v);
+        return true;
+      }
+      return false;
+    case pb::FieldDescriptor::CPPTYPE_BOOL:
+      if (const auto v = ParseBool(text)) {
+        rep ? r.AddBool(&m, f, *v) : r.SetBool(&m, f, *v);
+        return true;
+      }
+      return false;
+    case pb::FieldDescriptor::CPPTYPE_STRING:
+      rep ? r.AddString(&m, f, std::string(text)) : r.SetString(&m, f, std::string(text));
+      return true;
+    default:
+      return false;
+  }
+}
+
+// A check that the text is a finite number for which `ok` holds.
+CLI::Validator NumberValidator(bool (*ok)(double), const std::string& what,
+                               const std::string& name) {
+  return CLI::Validator(
+      [ok, what](const std::string& text) -> std::string {
+        const auto v = ParseNumber<double>(text);
+        return v && ok(*v) ? "" : "'" + text + "' is not " + what;
+      },
+      name);
+}
+
+}  // namespace
 
 Pose2 ParsePose(const std::string& text, const std::string& flag) {
   std::vector<double> values;
-  std::size_t begin = 0;
-  while (begin <= text.size()) {
-    const std::size_t end = std::min(text.find(',', begin), text.size());
-    double v = 0;
-    const auto [ptr, ec] = std::from_chars(text.data() + begin, text.data() + end, v);
-    if (ec != std::errc() || ptr != text.data() + end || !std::isfinite(v)) {
-      throw Error(flag + ": expected x,y,theta (three numbers), got '" + text + "'");
-    }
-    values.push_back(v);
-    begin = end + 1;
+  for (const std::string_view piece : SplitCommas(text)) {
+    const auto v = ParseNumber<double>(piece);
+    if (!v) throw Error(flag + ": expected x,y,theta (three numbers), got '" + text + "'");
+    values.push_back(*v);
   }
   if (values.size() != 3)
     throw Error(flag + ": expected x,y,theta (three numbers), got '" + text + "'");
   return Pose2(values[0], values[1], values[2]);
+}
+
+void SetField(pb::Message& message, const std::string& name, std::string_view text) {
+  const pb::FieldDescriptor* field = message.GetDescriptor()->FindFieldByName(name);
+  if (field == nullptr) {
+    throw Error(message.GetDescriptor()->name() + " has no field '" + name + "'");
+  }
+  message.GetReflection()->ClearField(&message, field);
+  const std::vector<std::string_view> values =
+      field->is_repeated() ? SplitCommas(text) : std::vector<std::string_view>{text};
+  for (const std::string_view v : values) {
+    if (!SetOne(message, field, v)) {
+      throw Error("'" + std::string(text) + "' is not " +
+                  (field->is_repeated() ? "a list of " : "a ") + field->cpp_type_name() + " value");
+    }
+  }
+}
+
+CLI::Validator PositiveNumber() {
+  return NumberValidator([](double v) { return v > 0.0; }, "a positive number", "POSITIVE");
+}
+
+CLI::Validator NonNegativeNumber() {
+  return NumberValidator([](double v) { return v >= 0.0; }, "a number >= 0", "NONNEGATIVE");
 }
 
 }  // namespace evoslam::cli

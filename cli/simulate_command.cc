@@ -4,6 +4,7 @@
 #include <string>
 
 #include "cli/commands.h"
+#include "cli/option_parsing.h"
 #include "common/mapping/line_map.h"
 #include "common/sim/simulator.h"
 #include "common/sim/world.h"
@@ -44,25 +45,25 @@ void AddSimulateCommand(CLI::App& app) {
   cmd->add_option("--beams", o.laser.beams, "laser beams")->check(CLI::Range(2, 100000));
   cmd->add_option("--fov", o.laser.field_of_view_deg, "field of view, degrees")
       ->check(CLI::Range(1.0, 360.0));
-  cmd->add_option("--max-range", o.laser.max_range, "laser range, m")->check(CLI::PositiveNumber);
+  cmd->add_option("--max-range", o.laser.max_range, "laser range, m")->check(PositiveNumber());
   cmd->add_option("--noise-uniform", o.noise.uniform_bandwidth,
                   "additive uniform noise: bandwidth (max - min), m")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegativeNumber());
   cmd->add_option("--noise-gaussian", o.noise.gaussian_sigma, "additive Gaussian noise sigma, m")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegativeNumber());
   cmd->add_option("--quantization", o.noise.quantization, "range quantization step, m")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegativeNumber());
   cmd->add_option("--pedestrians", o.noise.pedestrians, "people walking about, occluding beams")
       ->check(CLI::Range(0, 1000));
   cmd->add_option("--odometry-translation-noise", o.noise.odometry.translation_sigma,
                   "relative sigma per increment")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegativeNumber());
   cmd->add_option("--odometry-rotation-noise", o.noise.odometry.rotation_sigma,
                   "relative sigma per increment")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegativeNumber());
   cmd->add_flag("--perfect-odometry", a->no_odometry_noise, "odometry equal to the true motion");
   cmd->add_option("--step", o.step, "metres between scans (default: the world's)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegativeNumber());
   cmd->add_option("--max-scans", o.max_scans, "stop after N scans (0: whole route)");
   cmd->add_option("--seed", o.seed, "random seed");
   cmd->add_option("--out", a->out, "output directory")->required();
