@@ -10,6 +10,7 @@ namespace evoslam::cli {
 void AddInfoCommand(CLI::App& app);
 void AddSimulateCommand(CLI::App& app);
 void AddLocalizeCommand(CLI::App& app);
+void AddSlamCommand(CLI::App& app);
 void AddEvalCommand(CLI::App& app);
 void AddKeygenCommand(CLI::App& app);
 // jobs, status, watch, result, cancel, workers: managing jobs on a running coordinator.

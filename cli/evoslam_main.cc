@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
 
   evoslam::cli::AddInfoCommand(app);
   evoslam::cli::AddSimulateCommand(app);
+  evoslam::cli::AddSlamCommand(app);
   evoslam::cli::AddLocalizeCommand(app);
   evoslam::cli::AddEvalCommand(app);
   evoslam::cli::AddKeygenCommand(app);
