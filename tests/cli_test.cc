@@ -9,6 +9,8 @@
 #include <iterator>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "common/io/trajectory_io.h"
 #include "common/util/scratch_dir.h"
@@ -206,6 +208,77 @@ TEST_F(CliTest, BadFlagsAreRefused) {
   EXPECT_FALSE(fs::exists(dir_ / "o"));
   EXPECT_EQ(RunCli(localize).status, 1);  // a valid command line, but no such files
   EXPECT_EQ(RunCli("--help").status, 0);
+}
+
+// slam refuses a bad command line with 2, naming the flag, before it simulates or reads anything.
+TEST_F(CliTest, SlamRefusesBadFlags) {
+  const std::string slam = "slam --out " + Path("o");
+  for (const auto& [flag, shown] : std::vector<std::pair<std::string, std::string>>{
+           {"--method icp", "--method"},
+           {"--local-fitness eval3", "eval3"},
+           {"--particles -3", "--particles"},
+           {"--resolution -0.05", "--resolution"},
+           {"--loop-radius 0", "--loop-radius"},
+           {"--generations 0", "--generations"},
+           {"--seed -1", "--seed"},
+           {"--world atlantis", "atlantis"},
+           {"--world s-corridor --log l", "--log"},
+           {"--preset de-999", "de-999"},
+           {"--param bogus=1", "bogus"},
+           {"--param w1=abc", "abc"},
+           {"--param sigma=0.1,0.2", "sigma"},
+           {"--param log=x", "--log"},
+           {"--min-match-score 0", "match score"},
+           {"--detach", "--coordinator"},
+       }) {
+    const Result r = RunCli(slam + " " + flag);
+    EXPECT_EQ(r.status, 2) << flag << ": " << r.output;
+    EXPECT_NE(r.output.find(shown), std::string::npos) << flag << ": " << r.output;
+  }
+  EXPECT_EQ(RunCli("slam --world s-corridor").status, 2);  // the simulated log needs --out
+  EXPECT_FALSE(fs::exists(dir_ / "o"));
+  const Result missing = RunCli("slam --log " + Path("nope.clf") + " --out " + Path("o"));
+  EXPECT_EQ(missing.status, 1);
+  EXPECT_NE(missing.output.find("nope.clf"), std::string::npos) << missing.output;
+}
+
+// Each flag sets its parameter and leaves the others at their defaults; --param reaches the rest.
+TEST_F(CliTest, SlamFlagsSetTheirParameters) {
+  const Result defaults = RunCli("slam --print-params");
+  ASSERT_EQ(defaults.status, 0) << defaults.output;
+  EXPECT_NE(defaults.output.find("method: \"rss\""), std::string::npos) << defaults.output;
+  EXPECT_NE(defaults.output.find("local_only: false"), std::string::npos) << defaults.output;
+  EXPECT_NE(defaults.output.find("local_particles: 10\n"), std::string::npos) << defaults.output;
+  const Result set = RunCli(
+      "slam --print-params --log run.clf --particles 12 --local-fitness eval2 --local-only "
+      "--global-every 0 --partitions 4 --generations 7 --islands 3 --preset de-000 "
+      "--max-stretch 90 --loop-radius 1.5 --min-match-score 0.7 --resolution 0.1 "
+      "--local-iterations 20 --max-scans 50 --seed 9 --lenient "
+      "--param sigma=0.2,0.2,0.25 --param w2=0.25");
+  ASSERT_EQ(set.status, 0) << set.output;
+  for (const char* line : {"log: \"run.clf\"",
+                           "local_particles: 12",
+                           "local_fitness: \"eval2\"",
+                           "local_only: true",
+                           "global_every: 0",
+                           "partitions: 4",
+                           "generations: 7",
+                           "islands: 3",
+                           "preset: \"de-000\"",
+                           "max_stretch: 90",
+                           "revisit_radius_m: 1.5",
+                           "min_match_score: 0.7",
+                           "resolution_m: 0.1",
+                           "local_iterations: 20",
+                           "max_scans: 50",
+                           "seed: 9",
+                           "lenient: true",
+                           "sigma: [0.2, 0.2, 0.25]",
+                           "w2: 0.25",
+                           "w1: 0.5"}) {
+    EXPECT_NE(set.output.find(std::string(line) + "\n"), std::string::npos) << line << "\n"
+                                                                            << set.output;
+  }
 }
 
 TEST_F(CliTest, InfoDescribesTheIntelLog) {
