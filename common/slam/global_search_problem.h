@@ -61,6 +61,8 @@ class GlobalSearchProblem : public Problem {
   std::vector<Pose2> Apply(const Eigen::Ref<const Eigen::VectorXd>& x) const;
   // The candidate that changes nothing (all errors zero, means centred).
   Eigen::VectorXd Identity() const;
+  // The search starts from the trajectory as it stands.
+  std::optional<Eigen::VectorXd> start() const override { return Identity(); }
 
  private:
   void Score(const Eigen::Ref<const Eigen::VectorXd>& x, std::vector<std::size_t>& cells,

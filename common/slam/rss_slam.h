@@ -33,8 +33,11 @@ struct RssSlamParams {
   // loop_bound_scale times the loop's discrepancy plus refine_error, within global.max_error; a
   // periodic search (no loop) refines within refine_error. Bounds sized to the error at hand keep
   // the first population near the trajectory, which is close to right.
-  Eigen::Vector3d refine_error{0.05, 0.05, 0.01};
+  Eigen::Vector3d refine_error{0.02, 0.02, 0.002};
   double loop_bound_scale = 1.5;
+  // A correction may make the map's eq. 6 score worse by at most this fraction (closing a loop
+  // may blur a little); among those allowed, 002's choice: the loop closed best.
+  double sharpness_tolerance = 0.02;
   std::size_t generations = 100;  // 002
   std::size_t islands = 2;        // each runs 002's (mu+lambda) preset
   std::string preset = "mu+lambda-002";
