@@ -198,7 +198,9 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
       start = std::chrono::steady_clock::now();
       std::optional<LoopClosure> loop;
       const bool cooled = state.loops.empty() || i >= state.last_loop + params.loops.cooldown;
-      if (cooled) loop = DetectLoop(dataset.scans, state.poses, i, params.loops);
+      if (cooled && i % params.loops.check_interval == 0) {
+        loop = DetectLoop(dataset.scans, state.poses, i, params.loops);
+      }
       state.times.detection += SecondsSince(start);
       if (loop) {
         state.loops.push_back(*loop);

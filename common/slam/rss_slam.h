@@ -28,7 +28,7 @@ struct RssSlamParams {
   bool global_search = true;       // false: local search alone
   std::size_t global_every = 300;  // k; 0: only on a detected loop
   // A global search covers at most this many steps back (0: all since the last one).
-  std::size_t max_stretch = 0;
+  std::size_t max_stretch = 300;
   // A search's bounds on each partition's error (m, m, rad). A loop's search may correct up to
   // loop_bound_scale times the loop's discrepancy plus refine_error, within global.max_error; a
   // periodic search (no loop) refines within refine_error. Bounds sized to the error at hand keep

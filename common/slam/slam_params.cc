@@ -66,6 +66,7 @@ RssSlamParams RssSlamParamsFromProto(const proto::SlamParams& p) {
   if (p.has_fit_tolerance_rad()) d.fit_tolerance_theta = p.fit_tolerance_rad();
   if (p.has_place_scans()) d.place_scans = p.place_scans();
   if (p.has_cooldown_scans()) d.cooldown = p.cooldown_scans();
+  if (p.has_check_interval_scans()) d.check_interval = p.check_interval_scans();
   ValidateRssSlamParams(r);
   return r;
 }
@@ -114,6 +115,7 @@ proto::SlamParams CompleteSlamParams(const proto::SlamParams& given) {
   p.set_fit_tolerance_rad(d.fit_tolerance_theta);
   p.set_place_scans(static_cast<std::uint32_t>(d.place_scans));
   p.set_cooldown_scans(static_cast<std::uint32_t>(d.cooldown));
+  p.set_check_interval_scans(static_cast<std::uint32_t>(d.check_interval));
   return p;
 }
 
