@@ -11,6 +11,7 @@
 #include "common/io/carmen_reader.h"
 #include "common/slam/global_search_problem.h"
 #include "common/slam/local_search.h"
+#include "common/slam/rss_slam.h"
 #include "common/slam/step_correction_problem.h"
 #include "common/util/random.h"
 
@@ -103,6 +104,27 @@ void BM_LocalSearchIntel(benchmark::State& state) {
   state.counters["scans"] = static_cast<double>(first.scans.size());
 }
 BENCHMARK(BM_LocalSearchIntel)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+// The whole of 002's algorithm over the first range(0) scans of the Intel log (0: all 13,631),
+// on OMP_NUM_THREADS threads. Its speed against the log's own pace is the "x real time" counter.
+void BM_RssSlamIntel(benchmark::State& state) {
+  const Dataset* log = IntelOrSkip(state);
+  if (!log) return;
+  RssSlamParams params;
+  params.max_scans = static_cast<std::size_t>(state.range(0));
+  const std::size_t scans = params.max_scans > 0 ? params.max_scans : log->scans.size();
+  for (auto _ : state) benchmark::DoNotOptimize(RunRssSlam(*log, params, 1));
+  const double recorded = log->scans[scans - 1].timestamp - log->scans.front().timestamp;
+  state.counters["scans"] = static_cast<double>(scans);
+  state.counters["x_real_time"] = benchmark::Counter(
+      recorded * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_RssSlamIntel)
+    ->Arg(3000)
+    ->Arg(0)
+    ->Iterations(1)
+    ->UseRealTime()
+    ->Unit(benchmark::kSecond);
 
 }  // namespace
 }  // namespace evoslam
