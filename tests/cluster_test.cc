@@ -1174,12 +1174,13 @@ class SlamJobTest : public ServiceTest {
   }
 
   // Submits the job as a client does: datasets uploaded, seed and islands in the spec.
-  std::string SubmitSlam(evoslam::ServiceClient& client) {
+  std::string SubmitSlam(evoslam::ServiceClient& client,
+                         const proto::SlamParams& params = Params()) {
     proto::JobSpec spec;
     spec.set_kind(proto::JOB_KIND_SLAM);
     *spec.mutable_log() = client.Upload(DriveLog());
     *spec.mutable_relations() = client.Upload(DriveRelations());
-    *spec.mutable_slam() = Params();
+    *spec.mutable_slam() = params;
     spec.mutable_slam()->clear_seed();
     spec.mutable_slam()->clear_islands();
     spec.set_seed(kSeed);
@@ -1203,6 +1204,17 @@ TEST_F(SlamJobTest, OnTwoWorkerProcessesItWritesWhatRunRssSlamWritesInProcess) {
                                               &StartWorker("worker2", c.workers)};
   auto client = Client(c.clients);
   WaitForWorkers(client, 2);
+
+  // A bad parameter is refused at submit, by name.
+  proto::SlamParams bad = Params();
+  bad.add_sigma(0.3);
+  try {
+    SubmitSlam(client, bad);
+    ADD_FAILURE() << "a SLAM job with one sigma value was accepted";
+  } catch (const evoslam::ProtocolError& e) {
+    EXPECT_EQ(e.code(), proto::ERROR_CODE_INVALID);
+    EXPECT_NE(std::string(e.what()).find("sigma"), std::string::npos) << e.what();
+  }
 
   const std::string job_id = SubmitSlam(client);
   const proto::JobStatus end = WaitForEnd(client, job_id);
