@@ -17,7 +17,6 @@
 #include <utility>
 #include <vector>
 
-#include "common/localization/localize_params.h"
 #include "common/protocol/wire.h"
 #include "common/protocol/zmq_io.h"
 #include "common/service/dataset_files.h"
@@ -25,8 +24,9 @@
 #include "common/util/error.h"
 #include "common/util/sha256.h"
 #include "common/util/temp_dir.h"
+#include "coordinator/job_context.h"
+#include "coordinator/job_kinds.h"
 #include "coordinator/job_store.h"
-#include "coordinator/localize_job.h"
 #include "coordinator/task_board.h"
 #include "coordinator/worker_table.h"
 #include "coordinator/zap_handler.h"
@@ -358,30 +358,17 @@ proto::ClientReply Coordinator::Impl::Upload(const proto::UploadDataset& upload)
 }
 
 proto::ClientReply Coordinator::Impl::Submit(proto::JobSpec spec) {
-  if (spec.kind() != proto::JOB_KIND_LOCALIZE || !spec.has_localize()) {
-    throw Error("job kind " + std::to_string(spec.kind()) +
-                " is not one this coordinator runs (localize)");
-  }
-  // The spec's seed and island count, when given, are the job's.
-  if (spec.seed() != 0) spec.mutable_localize()->set_seed(spec.seed());
-  if (spec.islands() != 0) spec.mutable_localize()->set_islands(spec.islands());
-  if (spec.max_evaluations() != 0) {
-    throw Error("a localization's budget is per scan: set its generations, not max_evaluations");
-  }
-  LocalizeOptionsFromProto(spec.localize());  // throws Error naming a bad parameter
-  std::vector<std::pair<const char*, const proto::DatasetRef*>> refs = {{"log", &spec.log()},
-                                                                        {"map", &spec.map()}};
-  if (!spec.map_image().sha256().empty()) refs.emplace_back("map image", &spec.map_image());
-  if (!spec.relations().sha256().empty()) refs.emplace_back("relations", &spec.relations());
+  PrepareJobSpec(spec);
+  const auto refs = JobDatasets(spec);
   std::string id;
   {
     std::lock_guard lock(store_mutex_);
     for (const auto& [what, ref] : refs) {
-      ValidateDatasetRef(*ref, what);
-      if (!store_.HasDataset(ref->sha256())) {
-        throw ProtocolError(proto::ERROR_CODE_UNKNOWN_DATASET,
-                            std::string(what) + " " + ref->name() + " (" + ref->sha256() +
-                                ") has not been uploaded");
+      ValidateDatasetRef(ref, what);
+      if (!store_.HasDataset(ref.sha256())) {
+        throw ProtocolError(
+            proto::ERROR_CODE_UNKNOWN_DATASET,
+            std::string(what) + " " + ref.name() + " (" + ref.sha256() + ") has not been uploaded");
       }
     }
     if (store_.CountUnfinished() >= options_.max_queued_jobs) {
@@ -663,13 +650,11 @@ void Coordinator::Impl::RunJob(const std::string& job_id) {
       const auto status = store_.Status(job_id);
       if (!status || IsFinished(status->state())) return;  // cancelled while it waited
       context.spec = *store_.Spec(job_id);
-      std::vector<proto::DatasetRef> refs = {context.spec.log(), context.spec.map()};
-      if (!context.spec.map_image().sha256().empty()) refs.push_back(context.spec.map_image());
-      if (!context.spec.relations().sha256().empty()) refs.push_back(context.spec.relations());
-      for (const proto::DatasetRef& ref : refs) {
+      for (const auto& [what, ref] : JobDatasets(context.spec)) {
         if (files_.Find(ref)) continue;
         const auto content = store_.Dataset(ref.sha256());
-        if (!content) throw Error("dataset " + ref.name() + " is missing from the database");
+        if (!content)
+          throw Error(std::string(what) + " " + ref.name() + " is missing from the database");
         files_.Put(ref, *content);
       }
       const auto checkpoints = store_.Checkpoints(job_id);
@@ -697,7 +682,7 @@ void Coordinator::Impl::RunJob(const std::string& job_id) {
       }
       Touch(job_id);
     };
-    const std::vector<proto::ResultFile> files = RunLocalizeJob(context);
+    const std::vector<proto::ResultFile> files = RunJobOfKind(context);
     bool succeeded = false;
     {
       std::lock_guard lock(store_mutex_);

@@ -13,8 +13,7 @@ std::vector<proto::TaskResult> TaskBoard::RunAll(const std::string& job_id,
   std::vector<std::string> ids;
   {
     std::lock_guard lock(mutex_);
-    if (shutdown_) throw JobInterrupted("the coordinator is shutting down");
-    if (cancelled_.contains(job_id)) throw JobInterrupted("job " + job_id + " was cancelled");
+    ThrowIfInterruptedLocked(job_id);
     for (proto::Task& task : tasks) {
       std::string id = "t-" + std::to_string(next_id_++);
       task.set_task_id(id);
@@ -37,8 +36,7 @@ std::vector<proto::TaskResult> TaskBoard::RunAll(const std::string& job_id,
   });
   if (shutdown_ || cancelled_.contains(job_id)) {
     forget();
-    throw JobInterrupted(shutdown_ ? "the coordinator is shutting down"
-                                   : "job " + job_id + " was cancelled");
+    ThrowIfInterruptedLocked(job_id);
   }
   std::vector<proto::TaskResult> results;
   results.reserve(ids.size());
@@ -48,6 +46,16 @@ std::vector<proto::TaskResult> TaskBoard::RunAll(const std::string& job_id,
     if (r.has_error()) throw Error("a worker could not run a task: " + r.error().message());
   }
   return results;
+}
+
+void TaskBoard::ThrowIfInterrupted(const std::string& job_id) const {
+  std::lock_guard lock(mutex_);
+  ThrowIfInterruptedLocked(job_id);
+}
+
+void TaskBoard::ThrowIfInterruptedLocked(const std::string& job_id) const {
+  if (shutdown_) throw JobInterrupted("the coordinator is shutting down");
+  if (cancelled_.contains(job_id)) throw JobInterrupted("job " + job_id + " was cancelled");
 }
 
 std::optional<proto::Task> TaskBoard::Take() {

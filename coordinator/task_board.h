@@ -47,6 +47,10 @@ class TaskBoard {
   // fails it after max_attempts.
   void Requeue(const std::string& task_id);
 
+  // Throws JobInterrupted when the job is cancelled or the board shut down: a job thread that
+  // computes between its tasks asks, so that it stops as soon as one waiting for tasks would.
+  void ThrowIfInterrupted(const std::string& job_id) const;
+
   // Wakes the job's waiting thread with JobInterrupted and drops its waiting tasks.
   void Cancel(const std::string& job_id);
   // Interrupts every job; RunAll throws from then on.
@@ -60,6 +64,8 @@ class TaskBoard {
     std::optional<proto::TaskResult> result;
     int attempts = 1;
   };
+
+  void ThrowIfInterruptedLocked(const std::string& job_id) const;  // mutex_ held
 
   std::function<void()> wake_;
   int max_attempts_;

@@ -139,5 +139,16 @@ TEST(TaskBoardTest, AFailedTaskIsAnErrorForItsJobAndShutdownInterruptsEveryone) 
   EXPECT_THROW(board.RunAll("job-3", {TaskWithScan(0)}), JobInterrupted);
 }
 
+// A job thread computing between tasks (a SLAM job's local search) learns it should stop.
+TEST(TaskBoardTest, AJobThreadBetweenTasksCanAskWhetherToStop) {
+  TaskBoard board({});
+  EXPECT_NO_THROW(board.ThrowIfInterrupted("job-1"));
+  board.Cancel("job-1");
+  EXPECT_THROW(board.ThrowIfInterrupted("job-1"), JobInterrupted);
+  EXPECT_NO_THROW(board.ThrowIfInterrupted("job-2"));
+  board.Shutdown();
+  EXPECT_THROW(board.ThrowIfInterrupted("job-2"), JobInterrupted);
+}
+
 }  // namespace
 }  // namespace evoslam

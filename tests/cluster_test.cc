@@ -27,10 +27,18 @@
 #include <thread>
 #include <vector>
 
+#include "common/io/carmen_reader.h"
+#include "common/io/carmen_writer.h"
+#include "common/io/relations.h"
 #include "common/localization/localize_params.h"
 #include "common/protocol/wire.h"
 #include "common/protocol/zmq_io.h"
+#include "common/report/slam_outputs.h"
 #include "common/service/service_client.h"
+#include "common/sim/simulator.h"
+#include "common/sim/world.h"
+#include "common/slam/rss_slam.h"
+#include "common/slam/slam_params.h"
 #include "common/util/scratch_dir.h"
 #include "common/util/sha256.h"
 #include "common/util/temp_dir.h"
@@ -98,15 +106,19 @@ std::string Describe(const proto::JobStatus& s) {
          (s.error().empty() ? "" : " error: " + s.error());
 }
 
-// report.json without what depends on the machine and the moment: timings and thread counts.
+// report.json without what depends on the machine and the moment: timings and thread counts
+// (a SLAM report's phase times and global search seconds among them).
 std::string StableReport(const fs::path& path) {
   std::istringstream in(ReadAll(path));
   std::string line, out;
   while (std::getline(in, line)) {
     const std::string key = line.substr(std::min(line.size(), line.find_first_not_of(' ')));
-    if (key.starts_with("\"runtime_s\":") || key.starts_with("\"scans_per_second\":") ||
-        key.starts_with("\"threads\":"))
-      continue;
+    bool timing = false;
+    for (const char* k : {"runtime_s", "scans_per_second", "threads", "seconds", "local_s",
+                          "detection_s", "global_s", "total_s"}) {
+      timing |= key.starts_with("\"" + std::string(k) + "\":");
+    }
+    if (timing) continue;
     out += line + '\n';
   }
   return out;
@@ -390,15 +402,16 @@ class ServiceTest : public ::testing::Test {
     }
   }
 
-  // Waits until the job has localized at least `scans` scans but not all of them, and returns
-  // its status then. Throws when it finishes first: the test could not disturb it mid-way.
+  // Waits until the job has done at least `scans` scans of its `phase` ("local search" for a
+  // SLAM job) but not all of them, and returns its status then. Throws when it finishes first:
+  // the test could not disturb it mid-way.
   proto::JobStatus WaitForProgress(evoslam::ServiceClient& client, const std::string& job_id,
-                                   std::uint64_t scans = 1) {
+                                   std::uint64_t scans = 1, const std::string& phase = "localize") {
     proto::JobStatus s;
     const bool started = WaitUntil(
         [&] {
           s = client.Status(job_id);
-          return Finished(s) || (s.phase() == "localize" && s.done() >= scans);
+          return Finished(s) || (s.phase() == phase && s.done() >= scans);
         },
         kJobTimeout, 10ms);
     if (!started || Finished(s) || s.done() >= s.total()) {
@@ -418,6 +431,39 @@ class ServiceTest : public ::testing::Test {
       throw std::runtime_error("the job did not finish in time: " + Describe(s));
     }
     return s;
+  }
+
+  // Kills the coordinator with SIGKILL mid-job, restarts it on the same database and endpoints
+  // (the workers find it again by themselves) and follows the job to its end: it must resume
+  // from its checkpoint and succeed, its progress in `before`'s phase never going back towards
+  // the start. Returns the restarted coordinator.
+  CoordinatorProcess KillAndResume(const CoordinatorProcess& c, const std::string& job_id,
+                                   const proto::JobStatus& before) {
+    if (!c.process->Kill(SIGKILL) || !c.process->Wait(5s)) {
+      throw std::runtime_error("the coordinator could not be killed");
+    }
+    const CoordinatorProcess restarted =
+        StartCoordinator("coordinator-restarted", {}, c.clients, c.workers);
+    auto client = Client(restarted.clients);
+    std::vector<proto::JobStatus> seen;
+    proto::JobStatus end;
+    EXPECT_TRUE(WaitUntil(
+        [&] {
+          end = client.Status(job_id);
+          seen.push_back(end);
+          return Finished(end);
+        },
+        kJobTimeout, 10ms))
+        << Describe(end);
+    EXPECT_EQ(end.state(), proto::JOB_STATE_SUCCEEDED) << Describe(end);
+    EXPECT_NE(restarted.process->Log().find(job_id + ": resuming from its checkpoint"),
+              std::string::npos);
+    for (const proto::JobStatus& s : seen) {
+      if (s.phase() == before.phase()) {
+        EXPECT_GE(s.done(), before.done()) << Describe(s);
+      }
+    }
+    return restarted;
   }
 
   // Writes a finished job's files into `out`, as `evoslam result` does.
@@ -574,32 +620,9 @@ TEST_F(ServiceTest, AJobResumesFromItsCheckpointAfterTheCoordinatorIsKilledAndRe
   // A client following the job: it asks again when the events stop.
   ChildProcess& watch = Start(
       {EVOSLAM_CLI, "watch", job_id, "--coordinator", c.clients, "--timeout", "2"}, "watch.log");
-  ASSERT_TRUE(c.process->Kill(SIGKILL));
-  ASSERT_TRUE(c.process->Wait(5s));
-
-  // Same database, same endpoints: the workers find it again by themselves.
-  const CoordinatorProcess restarted =
-      StartCoordinator("coordinator-restarted", {}, c.clients, c.workers);
+  const CoordinatorProcess restarted = KillAndResume(c, job_id, before);
+  ASSERT_FALSE(HasFailure());
   auto client = Client(restarted.clients);
-  std::vector<proto::JobStatus> seen;
-  proto::JobStatus end;
-  ASSERT_TRUE(WaitUntil(
-      [&] {
-        end = client.Status(job_id);
-        seen.push_back(end);
-        return Finished(end);
-      },
-      kJobTimeout, 10ms))
-      << Describe(end);
-  ASSERT_EQ(end.state(), proto::JOB_STATE_SUCCEEDED) << Describe(end);
-  EXPECT_NE(restarted.process->Log().find(job_id + ": resuming from its checkpoint"),
-            std::string::npos);
-  // Its progress went on from where it was, never back towards the start.
-  for (const proto::JobStatus& s : seen) {
-    if (s.phase() == "localize") {
-      EXPECT_GE(s.done(), before.done()) << Describe(s);
-    }
-  }
   FetchResult(client, job_id, Path("result"));
   ExpectSameTrajectory(reference, Path("result"));
   const auto watched = watch.Wait(10s);
@@ -1084,6 +1107,146 @@ TEST_F(ServiceTest, ABusyWorkersRefusalSendsTheTaskElsewhere) {
 
   StartWorker("worker1", c.workers);
   ExpectSucceedsLike(client, job_id, reference);
+}
+
+// ---- SLAM ----
+
+// Paper 002's SLAM as a job: a drive through the simulated office cluster whose odometry drifts,
+// long enough for periodic global searches and a loop (under the sanitizers, periodic searches
+// alone), with searches small enough that the job takes seconds.
+class SlamJobTest : public ServiceTest {
+ protected:
+  static constexpr std::uint64_t kSeed = 3;
+  static constexpr std::size_t kScans = Scans(200);
+
+  void SetUp() override {
+    evoslam::SimulationOptions sim;
+    sim.laser.beams = 61;
+    sim.noise.odometry.rotation_bias = 0.02;
+    sim.max_scans = kScans;
+    evoslam::WriteCarmen(evoslam::Simulate(evoslam::BuiltinWorld("office-cluster"), sim),
+                         DriveLog());
+    // The true motion between scans ten apart, stamped as the log reads back.
+    std::ofstream relations(DriveRelations());
+    relations.precision(17);
+    const evoslam::Dataset drive = evoslam::ReadCarmen(DriveLog());
+    for (std::size_t i = 0; i + 10 < drive.scans.size(); i += 10) {
+      const evoslam::LaserScan &a = drive.scans[i], &b = drive.scans[i + 10];
+      const evoslam::Pose2 delta = a.true_pose->inverse() * *b.true_pose;
+      relations << a.timestamp << ' ' << b.timestamp << ' ' << delta.x() << ' ' << delta.y()
+                << " 0 0 0 " << delta.theta() << '\n';
+    }
+  }
+
+  fs::path DriveLog() const { return dir_ / "drive.clf"; }
+  fs::path DriveRelations() const { return dir_ / "drive.relations"; }
+
+  static proto::SlamParams Params() {
+    proto::SlamParams p;
+    p.set_log("drive.clf");
+    p.set_seed(kSeed);
+    p.set_islands(2);
+    p.set_generations(20);  // two epochs: migrants travel between them
+    p.set_partitions(4);
+    p.set_global_every(static_cast<std::uint32_t>(Scans(100)));
+    return p;
+  }
+
+  // The job's files as RunRssSlam makes them in this process, its global searches on local
+  // threads: what the service must hand back.
+  fs::path SlamReference() {
+    const fs::path out = dir_ / "slam-reference";
+    const evoslam::Dataset drive = evoslam::ReadCarmen(DriveLog());
+    const evoslam::RssSlamResult result =
+        evoslam::RunRssSlam(drive, evoslam::RssSlamParamsFromProto(Params()), kSeed);
+    EXPECT_FALSE(result.global_searches.empty()) << "no global search: the job sends no task";
+    if (kScaleDown == 1) {
+      EXPECT_FALSE(result.loops.empty()) << "no loop: none is searched";
+    }
+    const evoslam::NamedRelations relations{"drive.relations",
+                                            evoslam::ReadRelations(DriveRelations())};
+    fs::create_directories(out);
+    for (const proto::ResultFile& f :
+         evoslam::SlamOutputs(drive, evoslam::CompleteSlamParams(Params()), result, relations, 1)) {
+      std::ofstream(out / f.name(), std::ios::binary) << f.content();
+    }
+    return out;
+  }
+
+  // Submits the job as a client does: datasets uploaded, seed and islands in the spec.
+  std::string SubmitSlam(evoslam::ServiceClient& client,
+                         const proto::SlamParams& params = Params()) {
+    proto::JobSpec spec;
+    spec.set_kind(proto::JOB_KIND_SLAM);
+    *spec.mutable_log() = client.Upload(DriveLog());
+    *spec.mutable_relations() = client.Upload(DriveRelations());
+    *spec.mutable_slam() = params;
+    spec.mutable_slam()->clear_seed();
+    spec.mutable_slam()->clear_islands();
+    spec.set_seed(kSeed);
+    spec.set_islands(2);
+    return client.Submit(spec);
+  }
+
+  static void ExpectSameSlamOutputs(const fs::path& expected, const fs::path& actual) {
+    ExpectSameTrajectory(expected, actual);
+    EXPECT_TRUE(ReadAll(expected / "map.pgm") == ReadAll(actual / "map.pgm")) << "map.pgm differs";
+    EXPECT_EQ(StableReport(expected / "report.json"), StableReport(actual / "report.json"));
+    EXPECT_NE(ReadAll(actual / "report.json").find("\"relation_errors\""), std::string::npos)
+        << "the relations were not scored";
+  }
+};
+
+TEST_F(SlamJobTest, OnTwoWorkerProcessesItWritesWhatRunRssSlamWritesInProcess) {
+  const fs::path reference = SlamReference();
+  const CoordinatorProcess c = StartCoordinator("coordinator");
+  const std::vector<ChildProcess*> workers = {&StartWorker("worker1", c.workers),
+                                              &StartWorker("worker2", c.workers)};
+  auto client = Client(c.clients);
+  WaitForWorkers(client, 2);
+
+  // A bad parameter is refused at submit, by name.
+  proto::SlamParams bad = Params();
+  bad.add_sigma(0.3);
+  try {
+    SubmitSlam(client, bad);
+    ADD_FAILURE() << "a SLAM job with one sigma value was accepted";
+  } catch (const evoslam::ProtocolError& e) {
+    EXPECT_EQ(e.code(), proto::ERROR_CODE_INVALID);
+    EXPECT_NE(std::string(e.what()).find("sigma"), std::string::npos) << e.what();
+  }
+
+  const std::string job_id = SubmitSlam(client);
+  const proto::JobStatus end = WaitForEnd(client, job_id);
+  ASSERT_EQ(end.state(), proto::JOB_STATE_SUCCEEDED) << Describe(end);
+  FetchResult(client, job_id, Path("remote"));
+  ExpectSameSlamOutputs(reference, Path("remote"));
+  // The global searches' islands ran on both processes: each fetched the log. Their logs tell
+  // even when a loaded machine made the coordinator drop and readmit a worker, which starts its
+  // task count afresh.
+  for (ChildProcess* w : workers) {
+    EXPECT_NE(w->Log().find("fetching dataset drive.clf"), std::string::npos) << w->log_path();
+  }
+}
+
+TEST_F(SlamJobTest, ItResumesFromItsCheckpointAfterTheCoordinatorIsKilledAndRestarted) {
+  const fs::path reference = SlamReference();
+  const CoordinatorProcess c = StartCoordinator("coordinator");
+  StartWorker("worker1", c.workers);
+  StartWorker("worker2", c.workers);
+  std::string job_id;
+  proto::JobStatus before;
+  {
+    auto client = Client(c.clients);
+    WaitForWorkers(client, 2);
+    job_id = SubmitSlam(client);
+    before = WaitForProgress(client, job_id, kScans / 3, "local search");
+  }
+  const CoordinatorProcess restarted = KillAndResume(c, job_id, before);
+  ASSERT_FALSE(HasFailure());
+  auto client = Client(restarted.clients);
+  FetchResult(client, job_id, Path("result"));
+  ExpectSameSlamOutputs(reference, Path("result"));
 }
 
 // ---- CURVE ----

@@ -13,6 +13,7 @@
 #include "common/sim/world.h"
 #include "common/slam/global_search_problem.h"
 #include "common/slam/local_search.h"
+#include "common/slam/rss_slam.h"
 
 namespace evoslam {
 namespace {
@@ -121,6 +122,30 @@ TEST(GlobalSearchAccuracyTest, ClosingALoopWithThe002SearchUndoesTheDrift) {
   problem.Evaluate(problem.Identity(), identity);
   problem.Evaluate(pop.x.col(static_cast<Eigen::Index>(best)), found);
   EXPECT_LT(found[1], identity[1]);  // the loop is closer to closed
+}
+
+// The whole of 002's algorithm on a drive through the office cluster that passes its places
+// several times, with a strong heading drift.
+TEST(RssSlamAccuracyTest, MapsTheOfficeClusterFromDriftingOdometry) {
+  SimulationOptions sim;
+  sim.laser.beams = 181;
+  sim.noise.odometry.rotation_bias = 0.02;
+  sim.max_scans = 600;
+  const Dataset d = Simulate(BuiltinWorld("office-cluster"), sim);
+  std::vector<StampedPose> odometry;
+  for (const LaserScan& s : d.scans) odometry.push_back({s.timestamp, s.odometry});
+  RssSlamParams params;
+  params.generations = 30;
+  const RssSlamResult slam = RunRssSlam(d, params, 1);
+  params.global_search = false;
+  const RssSlamResult local = RunRssSlam(d, params, 1);
+
+  const double odometry_ate = Ate(odometry, d), local_ate = Ate(local.trajectory, d),
+               slam_ate = Ate(slam.trajectory, d);
+  EXPECT_GE(slam.loops.size(), 2u);
+  EXPECT_LT(slam_ate, odometry_ate / 3) << "odometry " << odometry_ate << " m, SLAM " << slam_ate;
+  // The global searches keep what the local search achieved.
+  EXPECT_LT(slam_ate, 1.2 * local_ate) << "local " << local_ate << " m, SLAM " << slam_ate;
 }
 
 }  // namespace

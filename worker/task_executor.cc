@@ -5,6 +5,9 @@
 #include "common/engine/engine_proto.h"
 #include "common/engine/island.h"
 #include "common/localization/localizer.h"
+#include "common/service/job_inputs.h"
+#include "common/slam/rss_slam.h"
+#include "common/slam/slam_params.h"
 #include "common/util/error.h"
 
 namespace evoslam {
@@ -12,9 +15,12 @@ namespace {
 
 constexpr std::size_t kInputsKept = 4;
 
+// A job's log, and its map and the map's image when it has them (a SLAM job builds its map).
 std::vector<proto::DatasetRef> DatasetsOf(const proto::ProblemSpec& problem) {
-  std::vector<proto::DatasetRef> refs = {problem.log(), problem.map()};
-  if (!problem.map_image().sha256().empty()) refs.push_back(problem.map_image());
+  std::vector<proto::DatasetRef> refs = {problem.log()};
+  for (const proto::DatasetRef* ref : {&problem.map(), &problem.map_image()}) {
+    if (!ref->sha256().empty()) refs.push_back(*ref);
+  }
   return refs;
 }
 
@@ -26,7 +32,7 @@ proto::TaskResult Failure(const std::string& task_id, const std::string& message
   return r;
 }
 
-// A job's inputs are named by its datasets' hashes and its parameters.
+// A localization job's inputs are named by its datasets' hashes and its parameters.
 std::string InputsKey(const proto::ProblemSpec& problem) {
   std::string key;
   for (const proto::DatasetRef& ref : DatasetsOf(problem)) key += ref.sha256() + "/";
@@ -53,6 +59,24 @@ void Remember(std::list<std::pair<std::string, std::shared_ptr<const T>>>& list,
   if (list.size() > kInputsKept) list.pop_back();
 }
 
+// A global search as the coordinator built it, with the poses and the base map it refers to.
+// Its members refer to one another: it is built in place and never moved.
+struct GlobalSearchOnBase {
+  GlobalSearchOnBase(const Dataset& dataset, const proto::ProblemSpec& spec)
+      : params(RssSlamParamsFromProto(spec.slam())),
+        task(GlobalSearchTaskFromProto(spec.global_search(), poses)),
+        base(BaseMapFor(dataset, poses, task.first, task.last, params.local)),
+        problem(MakeGlobalSearchProblem(dataset, task, params, base)) {}
+  GlobalSearchOnBase(const GlobalSearchOnBase&) = delete;
+  GlobalSearchOnBase& operator=(const GlobalSearchOnBase&) = delete;
+
+  RssSlamParams params;
+  std::vector<Pose2> poses;  // filled by task's initialiser, which comes after
+  GlobalSearchTask task;
+  HitCountGrid base;
+  GlobalSearchProblem problem;
+};
+
 }  // namespace
 
 TaskExecutor::TaskExecutor(std::shared_ptr<DatasetFiles> files) : files_(std::move(files)) {}
@@ -65,45 +89,74 @@ std::vector<proto::DatasetRef> TaskExecutor::Missing(const proto::Task& task) co
   return missing;
 }
 
-std::shared_ptr<const LocalizeInputs> TaskExecutor::Inputs(const proto::ProblemSpec& problem,
-                                                           const std::string& key) {
-  if (auto hit = Lookup(inputs_, key)) return hit;
-  auto inputs = LoadLocalizeInputs(*files_, problem.log(), problem.map(), problem.map_image(),
-                                   problem.localize());
-  Remember(inputs_, key, inputs);
-  return inputs;
+std::shared_ptr<const Problem> TaskExecutor::ProblemOf(const proto::Task& task) {
+  const proto::ProblemSpec& spec = task.problem();
+  if (spec.kind() == proto::JOB_KIND_LOCALIZE && spec.has_localize()) {
+    return LocalizeProblem(task);
+  }
+  if (spec.kind() == proto::JOB_KIND_SLAM && spec.has_slam() && spec.has_global_search()) {
+    return SlamProblem(task);
+  }
+  throw Error("task " + task.task_id() + ": a problem of kind " + std::to_string(spec.kind()) +
+              " with " +
+              (spec.has_localize() ? "localization"
+               : spec.has_slam()   ? "SLAM"
+                                   : "no") +
+              " parameters is not one this worker knows");
 }
 
-std::shared_ptr<const ScanProblem> TaskExecutor::ScanProblemOf(const proto::ProblemSpec& spec,
-                                                               const LocalizeInputs& inputs,
-                                                               const std::string& inputs_key) {
+std::shared_ptr<const Problem> TaskExecutor::LocalizeProblem(const proto::Task& task) {
+  const proto::ProblemSpec& spec = task.problem();
+  const std::string inputs_key = InputsKey(spec);
+  auto inputs = Lookup(inputs_, inputs_key);
+  if (!inputs) {
+    inputs = LoadLocalizeInputs(*files_, spec.log(), spec.map(), spec.map_image(), spec.localize());
+    Remember(inputs_, inputs_key, inputs);
+  }
+  if (spec.scan() >= inputs->dataset.scans.size() || spec.center_size() != 3) {
+    throw Error("task " + task.task_id() + ": scan " + std::to_string(spec.scan()) +
+                " with a centre of " + std::to_string(spec.center_size()) +
+                " values does not fit a log of " + std::to_string(inputs->dataset.scans.size()) +
+                " scans");
+  }
   std::string key = inputs_key + "/" + std::to_string(spec.scan());
   for (double c : spec.center()) key.append(reinterpret_cast<const char*>(&c), sizeof c);
   if (auto hit = Lookup(problems_, key)) return hit;
-  auto problem = std::make_shared<const ScanProblem>(
-      MakeScanProblem(inputs.map, inputs.dataset, spec.scan(),
-                      Pose2(spec.center(0), spec.center(1), spec.center(2)), inputs.options));
+  auto scan_problem = std::make_shared<const ScanProblem>(
+      MakeScanProblem(inputs->map, inputs->dataset, spec.scan(),
+                      Pose2(spec.center(0), spec.center(1), spec.center(2)), inputs->options));
+  // Shares ownership of the whole scan problem (its renderer included).
+  std::shared_ptr<const Problem> problem(scan_problem, scan_problem->problem.get());
+  Remember(problems_, std::move(key), problem);
+  return problem;
+}
+
+std::shared_ptr<const Problem> TaskExecutor::SlamProblem(const proto::Task& task) {
+  const proto::ProblemSpec& spec = task.problem();
+  // One global search's tasks (every island, every epoch) carry the same spec.
+  std::string key = spec.SerializeAsString();
+  if (auto hit = Lookup(problems_, key)) return hit;
+  const std::string log_key = spec.log().sha256() + (spec.slam().lenient() ? "/lenient" : "");
+  auto log = Lookup(logs_, log_key);
+  if (!log) {
+    log = std::make_shared<const Dataset>(LoadJobLog(*files_, spec.log(), spec.slam().lenient()));
+    Remember(logs_, log_key, log);
+  }
+  if (spec.global_search().last() > log->scans.size()) {
+    throw Error("task " + task.task_id() + ": a global search up to scan " +
+                std::to_string(spec.global_search().last()) + " of a log of " +
+                std::to_string(log->scans.size()) + " scans");
+  }
+  auto search = std::make_shared<const GlobalSearchOnBase>(*log, spec);
+  std::shared_ptr<const Problem> problem(search, &search->problem);
   Remember(problems_, std::move(key), problem);
   return problem;
 }
 
 proto::TaskResult TaskExecutor::Run(const proto::Task& task) {
   try {
-    const proto::ProblemSpec& spec = task.problem();
-    if (spec.kind() != proto::JOB_KIND_LOCALIZE || !spec.has_localize()) {
-      throw Error("task " + task.task_id() + ": a problem of kind " + std::to_string(spec.kind()) +
-                  " is not one this worker knows");
-    }
-    const std::string key = InputsKey(spec);
-    const auto inputs = Inputs(spec, key);
-    if (spec.scan() >= inputs->dataset.scans.size() || spec.center_size() != 3) {
-      throw Error("task " + task.task_id() + ": scan " + std::to_string(spec.scan()) +
-                  " with a centre of " + std::to_string(spec.center_size()) +
-                  " values does not fit a log of " + std::to_string(inputs->dataset.scans.size()) +
-                  " scans");
-    }
-    const auto scan_problem = ScanProblemOf(spec, *inputs, key);
-    const Problem& problem = *scan_problem->problem;
+    const std::shared_ptr<const Problem> shared = ProblemOf(task);
+    const Problem& problem = *shared;
     proto::TaskResult result;
     result.set_task_id(task.task_id());
     if (task.has_evaluate()) {

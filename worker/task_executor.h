@@ -7,7 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "common/localization/localizer.h"
+#include "common/optim/problem.h"
+#include "common/sensor/dataset.h"
 #include "common/service/dataset_files.h"
 #include "common/service/localize_inputs.h"
 #include "evoslam/service.pb.h"
@@ -27,18 +28,17 @@ class TaskExecutor {
   proto::TaskResult Run(const proto::Task& task);
 
  private:
-  // The job's parsed inputs; `key` names them (InputsKey).
-  std::shared_ptr<const LocalizeInputs> Inputs(const proto::ProblemSpec& problem,
-                                               const std::string& key);
-  // The scan's problem: built once for the many tasks of one scan's search.
-  std::shared_ptr<const ScanProblem> ScanProblemOf(const proto::ProblemSpec& problem,
-                                                   const LocalizeInputs& inputs,
-                                                   const std::string& inputs_key);
+  // Built once for the many tasks of one step (a scan's search, a global search): the task's
+  // problem, which owns whatever it refers to.
+  std::shared_ptr<const Problem> ProblemOf(const proto::Task& task);
+  std::shared_ptr<const Problem> LocalizeProblem(const proto::Task& task);
+  std::shared_ptr<const Problem> SlamProblem(const proto::Task& task);
 
   std::shared_ptr<DatasetFiles> files_;
   // Most recently used first; a handful of jobs at a time is what one worker serves.
   std::list<std::pair<std::string, std::shared_ptr<const LocalizeInputs>>> inputs_;
-  std::list<std::pair<std::string, std::shared_ptr<const ScanProblem>>> problems_;
+  std::list<std::pair<std::string, std::shared_ptr<const Dataset>>> logs_;
+  std::list<std::pair<std::string, std::shared_ptr<const Problem>>> problems_;
 };
 
 }  // namespace evoslam

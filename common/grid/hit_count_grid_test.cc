@@ -4,6 +4,8 @@
 
 #include <numbers>
 #include <random>
+#include <set>
+#include <type_traits>
 
 #include "common/util/error.h"
 
@@ -79,6 +81,82 @@ TEST(HitCountGridTest, AScanAddsItsReturnsWhereTheyEndAndTakesThemBackExactly) {
   EXPECT_EQ(grid.occupied(), 0u);
   scan.ranges = {7.0, 0.5, 0.0};  // (4, -7) is off the grid, (4.5, 0) on it, 0 no return
   EXPECT_EQ(grid.AddScan(scan, Pose2(4.0, 0.0, 0.0)), 1u);  // one end point beyond the grid
+}
+
+// A set for the cells of a grid of `grid_cells` cells, of either kind.
+template <typename Cells>
+Cells CellsFor(std::size_t grid_cells) {
+  if constexpr (std::is_same_v<Cells, GridCellSet>) {
+    return GridCellSet(grid_cells);
+  } else {
+    return CellSet();  // room for few: it grows as cells come
+  }
+}
+
+template <typename Cells>
+class CellSetsTest : public ::testing::Test {};
+using CellSetTypes = ::testing::Types<CellSet, GridCellSet>;
+TYPED_TEST_SUITE(CellSetsTest, CellSetTypes);
+
+TYPED_TEST(CellSetsTest, CountingAnInsertionGivesWhatAddingTheScansWouldChange) {
+  HitCountGrid grid(0.1, Eigen::Vector2d(-4.0, -3.0), 80, 60);
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<float> range(0.2f, 6.0f);
+  LaserScan scan;
+  scan.angle_min = -std::numbers::pi / 2;
+  scan.angle_increment = std::numbers::pi / 180;
+  scan.range_min = 0.1;
+  scan.range_max = 5.5;  // the longer ranges are no returns
+  for (int i = 0; i < 181; ++i) scan.ranges.push_back(range(gen));
+  grid.AddScan(scan, Pose2(0.5, 0.0, 0.3));
+  // Two more scans counted as one insertion, some of their end points off the grid.
+  const Pose2 a(0.6, 0.1, 0.35), b(2.0, -1.0, -2.0);
+  const std::vector<Eigen::Vector2d> points = ReturnPoints(scan);
+  TypeParam cells = CellsFor<TypeParam>(80 * 60);
+  HitCountGrid::Insertion sums;
+  grid.CountInsertion(a, points, cells, sums);
+  grid.CountInsertion(b, points, cells, sums);
+  HitCountGrid added = grid;
+  const std::size_t outside = added.AddScan(scan, a) + added.AddScan(scan, b);
+  EXPECT_GT(outside, 0u);
+  EXPECT_EQ(sums.inside, 2 * points.size() - outside);
+  EXPECT_EQ(sums.inside, added.total() - grid.total());
+  EXPECT_EQ(sums.fresh, added.occupied() - grid.occupied());
+  std::size_t hit = 0;
+  for (int y = 0; y < 60; ++y) {
+    for (int x = 0; x < 80; ++x) {
+      const bool changed = added.count(x, y) != grid.count(x, y);
+      hit += changed;
+      EXPECT_EQ(cells.Contains(static_cast<std::size_t>(y) * 80 + x), changed);
+    }
+  }
+  EXPECT_EQ(cells.size(), hit);
+}
+
+TYPED_TEST(CellSetsTest, HoldWhatAStdSetHoldsThroughGrowingAndClearing) {
+  constexpr std::size_t kLast = HitCountGrid::kMaxCells - 1;  // the largest index a grid has
+  TypeParam cells = CellsFor<TypeParam>(kLast + 1);
+  std::set<std::size_t> want;
+  std::mt19937 gen(5);
+  std::uniform_int_distribution<std::size_t> cell(0, 3000);
+  for (int round = 0; round < 3; ++round) {
+    for (int i = 0; i < 2000; ++i) {
+      const std::size_t c = round == 2 && i == 0 ? kLast : cell(gen);
+      ASSERT_EQ(cells.Insert(c), want.insert(c).second) << c;
+    }
+    EXPECT_EQ(cells.size(), want.size());
+    std::size_t wrong = 0;
+    for (std::size_t c = 0; c <= 3000; ++c) wrong += cells.Contains(c) != want.contains(c);
+    EXPECT_EQ(wrong, 0u);
+    EXPECT_EQ(cells.Contains(kLast), round == 2);
+    if (round < 2) {
+      const std::size_t held = *want.begin();
+      cells.Clear();
+      want.clear();
+      EXPECT_EQ(cells.size(), 0u);
+      EXPECT_FALSE(cells.Contains(held));
+    }
+  }
 }
 
 TEST(HitCountGridTest, RefusesGridsThatCannotBe) {

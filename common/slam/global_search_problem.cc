@@ -69,60 +69,66 @@ Eigen::VectorXd GlobalSearchProblem::Identity() const {
 }
 
 std::vector<Pose2> GlobalSearchProblem::Apply(const Eigen::Ref<const Eigen::VectorXd>& x) const {
-  std::vector<Pose2> out;
-  out.reserve(last_ - first_);
-  if (first_ < steps_begin_) out.push_back(anchor_);  // scan 0 stays where it is
+  std::vector<double> weights;
+  std::vector<Pose2> poses;
+  Apply(x, weights, poses);
+  return poses;
+}
+
+void GlobalSearchProblem::Apply(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                std::vector<double>& weights, std::vector<Pose2>& poses) const {
+  poses.clear();
+  poses.reserve(last_ - first_);
+  if (first_ < steps_begin_) poses.push_back(anchor_);  // scan 0 stays where it is
   Pose2 pose = anchor_;
   for (std::size_t i = 0; i + 1 < bounds_.size(); ++i) {
     const std::size_t b = bounds_[i], e = bounds_[i + 1];
     const double n = static_cast<double>(e - b);
-    Eigen::Vector3d weight_sum = Eigen::Vector3d::Zero();
-    // Eq. 5's Gaussian over the partition, normalised: the partition's error is spread, not
-    // multiplied.
-    const auto weight = [&](std::size_t j, int axis) {
-      const double t = (static_cast<double>(j - b) + 0.5) / n;
-      const double mu = x(static_cast<Eigen::Index>(i * kGenesPerColumn + 2 * axis + 1));
-      const double d = (t - mu) / params_.sigma(axis);
-      return std::exp(-0.5 * d * d);
+    const auto gene = [&](int axis, int which) {  // which: 0 the error, 1 the mean
+      return x(static_cast<Eigen::Index>(i * kGenesPerColumn + 2 * axis + which));
     };
+    // Eq. 5's Gaussian over the partition, normalised: the partition's error is spread, not
+    // multiplied. The weights are kept for the second pass, so each costs one exp.
+    weights.clear();
+    Eigen::Vector3d weight_sum = Eigen::Vector3d::Zero();
     for (std::size_t j = b; j < e; ++j) {
-      for (int axis = 0; axis < 3; ++axis) weight_sum(axis) += weight(j, axis);
+      const double t = (static_cast<double>(j - b) + 0.5) / n;
+      for (int axis = 0; axis < 3; ++axis) {
+        const double d = (t - gene(axis, 1)) / params_.sigma(axis);
+        weights.push_back(std::exp(-0.5 * d * d));
+        weight_sum(axis) += weights.back();
+      }
     }
     for (std::size_t j = b; j < e; ++j) {
+      const double* weight = &weights[3 * (j - b)];
       Eigen::Vector3d error;
       for (int axis = 0; axis < 3; ++axis) {
-        const double delta = x(static_cast<Eigen::Index>(i * kGenesPerColumn + 2 * axis));
-        error(axis) = weight_sum(axis) > 0 ? delta * weight(j, axis) / weight_sum(axis) : 0.0;
+        error(axis) = weight_sum(axis) > 0 ? gene(axis, 0) * weight[axis] / weight_sum(axis) : 0.0;
       }
       pose = pose * (increments_[j] * Pose2(error(0), error(1), error(2)));
-      out.push_back(pose);
+      poses.push_back(pose);
     }
   }
-  return out;
 }
 
-void GlobalSearchProblem::Score(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                std::vector<std::size_t>& cells, double* fitness) const {
-  const std::vector<Pose2> poses = Apply(x);
-  cells.clear();
+void GlobalSearchProblem::Score(const Eigen::Ref<const Eigen::VectorXd>& x, Scratch& scratch,
+                                double* fitness) const {
+  Apply(x, scratch.weights, scratch.poses);
+  const std::vector<Pose2>& poses = scratch.poses;
+  GridCellSet& cells = scratch.cells;
+  cells.Clear();
+  HitCountGrid::Insertion added;
   for (std::size_t k = 0; k < poses.size(); ++k) {
-    for (const Eigen::Vector2d& p : returns_[k]) {
-      if (const auto c = base_.CellIndex(poses[k] * p)) cells.push_back(*c);
-    }
+    base_.CountInsertion(poses[k], returns_[k], cells, added);
   }
-  const std::size_t inside = cells.size();
-  std::sort(cells.begin(), cells.end());
-  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
-  std::size_t fresh = 0;
-  for (const std::size_t c : cells) fresh += base_.count(c) == 0;
-  const double occupied = static_cast<double>(base_.occupied() + fresh);
-  fitness[0] = occupied > 0 ? -static_cast<double>(base_.total() + inside) / occupied : 0.0;
+  const double occupied = static_cast<double>(base_.occupied() + added.fresh);
+  fitness[0] = occupied > 0 ? -static_cast<double>(base_.total() + added.inside) / occupied : 0.0;
 
   // Eq. 7: path cells on obstacles, and the loop's two observations of one place.
   double conflicts = 0.0;
   for (const Pose2& pose : poses) {
     const auto c = base_.CellIndex(pose.translation());
-    if (c) conflicts += base_.count(*c) > 0 || std::binary_search(cells.begin(), cells.end(), *c);
+    if (c) conflicts += base_.count(*c) > 0 || cells.Contains(*c);
   }
   double distance = 0.0;
   if (loop_) {
@@ -139,10 +145,13 @@ void GlobalSearchProblem::Evaluate(const Eigen::Ref<const Eigen::MatrixXd>& cand
   const Eigen::Index n = candidates.cols();
 #pragma omp parallel
   {
-    std::vector<std::size_t> cells;
+    Scratch scratch{GridCellSet(static_cast<std::size_t>(base_.width()) *
+                                static_cast<std::size_t>(base_.height())),
+                    {},
+                    {}};
 #pragma omp for schedule(dynamic, 1)
     for (Eigen::Index i = 0; i < n; ++i) {
-      Score(candidates.col(i), cells, fitness.data() + 2 * static_cast<std::size_t>(i));
+      Score(candidates.col(i), scratch, fitness.data() + 2 * static_cast<std::size_t>(i));
     }
   }
 }

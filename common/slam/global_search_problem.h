@@ -61,10 +61,19 @@ class GlobalSearchProblem : public Problem {
   std::vector<Pose2> Apply(const Eigen::Ref<const Eigen::VectorXd>& x) const;
   // The candidate that changes nothing (all errors zero, means centred).
   Eigen::VectorXd Identity() const;
+  // The search starts from the trajectory as it stands.
+  std::optional<Eigen::VectorXd> start() const override { return Identity(); }
 
  private:
-  void Score(const Eigen::Ref<const Eigen::VectorXd>& x, std::vector<std::size_t>& cells,
-             double* fitness) const;
+  // A thread's working memory, made once a batch rather than once a candidate.
+  struct Scratch {
+    GridCellSet cells;            // the cells the stretch's end points fall in
+    std::vector<double> weights;  // eq. 5's weights of a partition's steps, per axis
+    std::vector<Pose2> poses;     // the candidate's corrected poses
+  };
+  void Apply(const Eigen::Ref<const Eigen::VectorXd>& x, std::vector<double>& weights,
+             std::vector<Pose2>& poses) const;
+  void Score(const Eigen::Ref<const Eigen::VectorXd>& x, Scratch& scratch, double* fitness) const;
 
   const HitCountGrid& base_;
   GlobalSearchParams params_;

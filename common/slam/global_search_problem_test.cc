@@ -2,9 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "common/sim/simulator.h"
 #include "common/sim/world.h"
+#include "common/slam/slam_testing.h"
 #include "common/util/error.h"
+#include "common/util/random.h"
 
 namespace evoslam {
 namespace {
@@ -34,6 +39,132 @@ TEST(GlobalSearchProblemTest, TheIdentityChangesNothingAndErrorsSpreadOverTheirP
   EXPECT_NEAR(WrapAngle(turned.back().theta() - odometry.back().theta()), 0.1, 1e-9);
   EXPECT_THROW(GlobalSearchProblem(loop.log.scans, odometry, 10, n + 1, base, params, std::nullopt),
                Error);
+}
+
+// Eqs. 5 to 7 as the paper writes them, nothing spared: each step's weights summed afresh, every
+// end point placed with Pose2, the cells sorted to count them. The problem must give these bits.
+struct Scored {
+  std::vector<Pose2> poses;  // scans [first, last) corrected
+  double fitness[2] = {0.0, 0.0};
+  std::size_t outside = 0;  // end points off the grid
+  // Poses on a cell the base map holds, and on one only the stretch's own end points fill.
+  std::size_t on_base = 0, on_own = 0;
+};
+
+Scored ScoreAsWritten(std::span<const LaserScan> scans, std::span<const Pose2> poses,
+                      std::size_t first, std::size_t last, const HitCountGrid& base,
+                      const GlobalSearchParams& params, const std::optional<LoopConstraint>& loop,
+                      const Eigen::VectorXd& x) {
+  Scored r;
+  const std::size_t begin = std::max<std::size_t>(first, 1), steps = last - begin;
+  const std::size_t partitions = std::max<std::size_t>(1, std::min(params.partitions, steps));
+  if (first < begin) r.poses.push_back(poses[0]);
+  Pose2 pose = poses[begin - 1];
+  for (std::size_t i = 0; i < partitions; ++i) {
+    const std::size_t b = i * steps / partitions, e = (i + 1) * steps / partitions;
+    for (std::size_t j = b; j < e; ++j) {
+      double error[3];
+      for (int axis = 0; axis < 3; ++axis) {
+        const auto weight = [&](std::size_t k) {
+          const double t = (static_cast<double>(k - b) + 0.5) / static_cast<double>(e - b);
+          const double d =
+              (t - x(static_cast<Eigen::Index>(6 * i + 2 * axis + 1))) / params.sigma(axis);
+          return std::exp(-0.5 * d * d);
+        };
+        double sum = 0.0;
+        for (std::size_t k = b; k < e; ++k) sum += weight(k);
+        const double delta = x(static_cast<Eigen::Index>(6 * i + 2 * axis));
+        error[axis] = sum > 0 ? delta * weight(j) / sum : 0.0;
+      }
+      const Pose2 step = poses[begin + j - 1].inverse() * poses[begin + j];
+      pose = pose * (step * Pose2(error[0], error[1], error[2]));
+      r.poses.push_back(pose);
+    }
+  }
+  std::vector<Eigen::Vector2d> points;
+  for (std::size_t k = 0; k < r.poses.size(); ++k) {
+    for (const Eigen::Vector2d& p : ReturnPoints(scans[first + k])) {
+      points.push_back(r.poses[k] * p);
+    }
+  }
+  const testing::CountedInsertion added = testing::CountAsWritten(base, points);
+  r.outside = points.size() - added.inside;
+  const double occupied = static_cast<double>(base.occupied() + added.fresh);
+  r.fitness[0] = occupied > 0 ? -static_cast<double>(base.total() + added.inside) / occupied : 0.0;
+  for (const Pose2& p : r.poses) {
+    const auto c = base.CellIndex(p.translation());
+    if (!c) continue;
+    if (base.count(*c) > 0) {
+      ++r.on_base;
+    } else {
+      r.on_own += std::binary_search(added.cells.begin(), added.cells.end(), *c);
+    }
+  }
+  const double conflicts = static_cast<double>(r.on_base + r.on_own);
+  double distance = 0.0;
+  if (loop) {
+    const Pose2 earlier =
+        loop->earlier < first ? poses[loop->earlier] : r.poses[loop->earlier - first];
+    distance =
+        (r.poses[loop->later - first].translation() - (earlier * loop->relative).translation())
+            .norm();
+  }
+  r.fitness[1] = params.w1 * conflicts + params.w2 * distance;
+  return r;
+}
+
+TEST(GlobalSearchProblemTest, ScoresRandomCandidatesToTheBitAsTheEquationsAreWritten) {
+  SimulationOptions sim;
+  sim.laser.beams = 61;
+  sim.max_scans = 70;
+  const Dataset log = Simulate(BuiltinWorld("office-cluster"), sim);
+  std::vector<Pose2> odometry;
+  for (const LaserScan& s : log.scans) odometry.push_back(s.odometry);
+  // Cut short of the world, so that some end points fall off the grid.
+  HitCountGrid base(0.05, Eigen::Vector2d(-2, -2), 400, 460);
+  const Pose2 nudge(0.2, -0.1, 0.05);
+  struct Case {
+    std::size_t first, last;
+    LoopConstraint loop;
+  };
+  for (const Case& c : {Case{0, 40, {5, 35, odometry[5].inverse() * odometry[35] * nudge}},
+                        Case{30, 70, {10, 60, odometry[10].inverse() * odometry[60] * nudge}},
+                        Case{30, 70, {40, 65, odometry[40].inverse() * odometry[65] * nudge}}}) {
+    HitCountGrid others = base;
+    for (std::size_t i = 0; i < log.scans.size(); ++i) {
+      if (i < c.first || i >= c.last) others.AddScan(log.scans[i], odometry[i]);
+    }
+    GlobalSearchParams params;
+    params.partitions = 6;
+    const GlobalSearchProblem problem(log.scans, std::span(odometry).first(c.last), c.first, c.last,
+                                      others, params, c.loop);
+    Rng rng(c.first + c.loop.earlier);
+    constexpr Eigen::Index kCandidates = 40;
+    Eigen::MatrixXd batch(problem.lower().size(), kCandidates);
+    for (Eigen::Index i = 0; i < kCandidates; ++i) {
+      for (Eigen::Index g = 0; g < batch.rows(); ++g) {
+        batch(g, i) = rng.Uniform(problem.lower()(g), problem.upper()(g));
+      }
+    }
+    batch.col(0) = problem.Identity();
+    std::vector<double> fitness(2 * kCandidates);
+    problem.Evaluate(batch, fitness);
+    std::size_t outside = 0, on_base = 0, on_own = 0;
+    for (Eigen::Index i = 0; i < kCandidates; ++i) {
+      const Scored want = ScoreAsWritten(log.scans, odometry, c.first, c.last, others, params,
+                                         c.loop, batch.col(i));
+      EXPECT_EQ(problem.Apply(batch.col(i)), want.poses) << "candidate " << i;
+      EXPECT_EQ(fitness[2 * i], want.fitness[0]) << "candidate " << i;
+      EXPECT_EQ(fitness[2 * i + 1], want.fitness[1]) << "candidate " << i;
+      outside += want.outside;
+      on_base += want.on_base;
+      on_own += want.on_own;
+    }
+    // The cases the scores branch on were met.
+    EXPECT_GT(outside, 0u);
+    EXPECT_GT(on_base, 0u);
+    EXPECT_GT(on_own, 0u);
+  }
 }
 
 }  // namespace

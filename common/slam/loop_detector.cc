@@ -19,6 +19,7 @@ constexpr double kFieldSigma = 0.1;        // m: a few cells, so the coarse latt
 void ValidateLoopDetectionParams(const LoopDetectionParams& p) {
   if (!(p.revisit_radius > 0.0)) throw Error("loop detection: the revisit radius must be > 0");
   if (p.min_gap == 0) throw Error("loop detection: the gap between visits must be >= 1 scan");
+  if (p.check_interval == 0) throw Error("loop detection: the check interval must be >= 1 scan");
   if (!(p.min_travel >= 0.0)) throw Error("loop detection: the travel must not be negative");
   if (!(p.match_window > 0.0) || !(p.match_window_theta > 0.0))
     throw Error("loop detection: the match window must be positive");

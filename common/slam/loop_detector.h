@@ -32,7 +32,10 @@ struct LoopDetectionParams {
   double fit_tolerance = 0.1;         // m
   double fit_tolerance_theta = 0.02;  // rad
   // Scans after a detection before the next one may be reported.
-  std::size_t cooldown = 50;
+  std::size_t cooldown = 100;
+  // A revisit is checked at every this many scans: matching costs milliseconds, and the robot
+  // stays in a revisited place for many scans.
+  std::size_t check_interval = 10;
 };
 
 void ValidateLoopDetectionParams(const LoopDetectionParams& params);

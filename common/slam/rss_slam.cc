@@ -32,6 +32,23 @@ std::size_t StretchStart(const RssSlamParams& params, const RssSlamState& state,
   return first;
 }
 
+// 002's choice (the first front's member closest to closing the loop, ties going to the sharper
+// map) among the members whose map is at least as sharp as `max_f1` allows.
+std::optional<std::size_t> PickWithin(const Eigen::MatrixXd& f, double max_f1) {
+  std::optional<std::size_t> best;
+  for (std::size_t i = 0; i < static_cast<std::size_t>(f.cols()); ++i) {
+    const auto c = static_cast<Eigen::Index>(i);
+    if (f(0, c) > max_f1) continue;
+    if (!best) {
+      best = i;
+      continue;
+    }
+    const auto b = static_cast<Eigen::Index>(*best);
+    if (f(1, c) < f(1, b) || (f(1, c) == f(1, b) && f(0, c) < f(0, b))) best = i;
+  }
+  return best;
+}
+
 }  // namespace
 
 void ValidateRssSlamParams(const RssSlamParams& params) {
@@ -39,7 +56,7 @@ void ValidateRssSlamParams(const RssSlamParams& params) {
   ValidateGlobalSearchParams(params.global);
   ValidateLoopDetectionParams(params.loops);
   if (!(params.refine_error.array() >= 0.0).all() || !params.refine_error.allFinite() ||
-      !(params.loop_bound_scale >= 0.0)) {
+      !(params.loop_bound_scale >= 0.0) || !(params.sharpness_tolerance >= 0.0)) {
     throw Error("global search: the search bounds must be finite and not negative");
   }
   if (params.global_search) {
@@ -131,7 +148,6 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
       }
     }
     const Population all = islands.Merged();
-    const auto best = static_cast<Eigen::Index>(PickGlobalSolution(all.f));
 
     GlobalSearchRecord record;
     record.first = task.first;
@@ -139,14 +155,15 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
     record.loop = loop;
     record.evaluations = islands.evaluations();
     problem.Evaluate(problem.Identity(), record.before);
+    const std::optional<std::size_t> pick = PickWithin(
+        all.f, record.before[0] + params.sharpness_tolerance * std::abs(record.before[0]));
+    // Keep a correction that costs the map at most the tolerance in sharpness and that leaving
+    // the stretch alone does not match on both objectives.
+    const auto best = static_cast<Eigen::Index>(pick.value_or(0));
     record.after[0] = all.f(0, best);
     record.after[1] = all.f(1, best);
-    // Keep the correction only when it is no worse than leaving the stretch alone on either
-    // objective and better on one: the search must not trade a closed loop for a blurred map.
-    const bool no_worse =
-        record.after[0] <= record.before[0] && record.after[1] <= record.before[1];
-    const bool better = record.after[0] < record.before[0] || record.after[1] < record.before[1];
-    record.applied = no_worse && better;
+    record.applied =
+        pick && (record.after[0] < record.before[0] || record.after[1] < record.before[1]);
     if (record.applied) {
       const std::vector<Pose2> corrected = problem.Apply(all.x.col(best));
       map = std::move(base);
@@ -181,7 +198,9 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
       start = std::chrono::steady_clock::now();
       std::optional<LoopClosure> loop;
       const bool cooled = state.loops.empty() || i >= state.last_loop + params.loops.cooldown;
-      if (cooled) loop = DetectLoop(dataset.scans, state.poses, i, params.loops);
+      if (cooled && i % params.loops.check_interval == 0) {
+        loop = DetectLoop(dataset.scans, state.poses, i, params.loops);
+      }
       state.times.detection += SecondsSince(start);
       if (loop) {
         state.loops.push_back(*loop);

@@ -28,13 +28,16 @@ struct RssSlamParams {
   bool global_search = true;       // false: local search alone
   std::size_t global_every = 300;  // k; 0: only on a detected loop
   // A global search covers at most this many steps back (0: all since the last one).
-  std::size_t max_stretch = 0;
+  std::size_t max_stretch = 300;
   // A search's bounds on each partition's error (m, m, rad). A loop's search may correct up to
   // loop_bound_scale times the loop's discrepancy plus refine_error, within global.max_error; a
   // periodic search (no loop) refines within refine_error. Bounds sized to the error at hand keep
   // the first population near the trajectory, which is close to right.
-  Eigen::Vector3d refine_error{0.05, 0.05, 0.01};
+  Eigen::Vector3d refine_error{0.02, 0.02, 0.002};
   double loop_bound_scale = 1.5;
+  // A correction may make the map's eq. 6 score worse by at most this fraction (closing a loop
+  // may blur a little); among those allowed, 002's choice: the loop closed best.
+  double sharpness_tolerance = 0.02;
   std::size_t generations = 100;  // 002
   std::size_t islands = 2;        // each runs 002's (mu+lambda) preset
   std::string preset = "mu+lambda-002";

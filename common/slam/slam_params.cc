@@ -54,6 +54,7 @@ RssSlamParams RssSlamParamsFromProto(const proto::SlamParams& p) {
   if (p.has_max_stretch()) r.max_stretch = p.max_stretch();
   r.refine_error = Triple(p.refine_error(), r.refine_error, "refine_error");
   if (p.has_loop_bound_scale()) r.loop_bound_scale = p.loop_bound_scale();
+  if (p.has_sharpness_tolerance()) r.sharpness_tolerance = p.sharpness_tolerance();
   LoopDetectionParams& d = r.loops;
   if (p.has_revisit_radius_m()) d.revisit_radius = p.revisit_radius_m();
   if (p.has_min_gap_scans()) d.min_gap = p.min_gap_scans();
@@ -65,6 +66,7 @@ RssSlamParams RssSlamParamsFromProto(const proto::SlamParams& p) {
   if (p.has_fit_tolerance_rad()) d.fit_tolerance_theta = p.fit_tolerance_rad();
   if (p.has_place_scans()) d.place_scans = p.place_scans();
   if (p.has_cooldown_scans()) d.cooldown = p.cooldown_scans();
+  if (p.has_check_interval_scans()) d.check_interval = p.check_interval_scans();
   ValidateRssSlamParams(r);
   return r;
 }
@@ -101,6 +103,7 @@ proto::SlamParams CompleteSlamParams(const proto::SlamParams& given) {
   p.set_max_stretch(static_cast<std::uint32_t>(r.max_stretch));
   SetTriple(p.mutable_refine_error(), r.refine_error);
   p.set_loop_bound_scale(r.loop_bound_scale);
+  p.set_sharpness_tolerance(r.sharpness_tolerance);
   const LoopDetectionParams& d = r.loops;
   p.set_revisit_radius_m(d.revisit_radius);
   p.set_min_gap_scans(static_cast<std::uint32_t>(d.min_gap));
@@ -112,6 +115,7 @@ proto::SlamParams CompleteSlamParams(const proto::SlamParams& given) {
   p.set_fit_tolerance_rad(d.fit_tolerance_theta);
   p.set_place_scans(static_cast<std::uint32_t>(d.place_scans));
   p.set_cooldown_scans(static_cast<std::uint32_t>(d.cooldown));
+  p.set_check_interval_scans(static_cast<std::uint32_t>(d.check_interval));
   return p;
 }
 

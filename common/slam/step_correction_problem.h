@@ -43,8 +43,8 @@ class StepCorrectionProblem : public Problem {
   double Score(const Eigen::Ref<const Eigen::VectorXd>& error) const;
 
  private:
-  double Score(const Eigen::Ref<const Eigen::VectorXd>& error,
-               std::vector<std::size_t>& cells) const;
+  // `cells`: a thread's working memory, made once a batch rather than once a candidate.
+  double Score(const Eigen::Ref<const Eigen::VectorXd>& error, CellSet& cells) const;
 
   const HitCountGrid& map_;
   Pose2 predicted_;

@@ -8,7 +8,9 @@
 #include "common/engine/algorithm_spec.h"
 #include "common/localization/test_scenes.h"
 #include "common/optim/evolve.h"
+#include "common/slam/slam_testing.h"
 #include "common/util/error.h"
+#include "common/util/random.h"
 
 namespace evoslam {
 namespace {
@@ -19,13 +21,14 @@ Eigen::Vector3d AsVector(const Pose2& p) { return {p.x(), p.y(), p.theta()}; }
 
 // A map of the box room seen from a few poses along a walk, and the next scan of the walk.
 struct Scene {
-  HitCountGrid map{0.05, Eigen::Vector2d(-1.0, -1.0), 180, 200};
+  HitCountGrid map;
   LaserScan next;
   Pose2 next_pose{3.1, 2.5, 0.8};
 };
 
-Scene MakeScene() {
-  Scene s;
+// map_width: cells of 5 cm from x = -1; the room spans x in [0, 6].
+Scene MakeScene(int map_width = 180) {
+  Scene s{HitCountGrid(0.05, Eigen::Vector2d(-1.0, -1.0), map_width, 200), {}};
   const LineMap room = testing::BoxRoom();
   for (int i = 0; i < 5; ++i) {
     const Pose2 pose(2.5 + 0.1 * i, 2.0 + 0.08 * i, 0.55 + 0.04 * i);
@@ -72,6 +75,43 @@ TEST_P(StepCorrectionTest, TheTrueCorrectionScoresBestAndPsoFindsIt) {
   const Pose2 found = problem.Corrected(r.best);
   EXPECT_LT((found.translation() - s.next_pose.translation()).norm(), 0.05);
   EXPECT_LT(std::abs(WrapAngle(found.theta() - s.next_pose.theta())), 1.0 * kDeg);
+}
+
+// Eqs. 1 and 2 as the paper writes them, nothing spared: every end point placed with Pose2, the
+// cells sorted to count them. The problem must give these bits. The map's obstacles all lie in
+// the part being updated, so that part's sums are the whole map's.
+double ScoreAsWritten(const HitCountGrid& map, const LaserScan& scan, const Pose2& pose,
+                      LocalFitness fitness) {
+  std::vector<Eigen::Vector2d> points;
+  for (const Eigen::Vector2d& p : ReturnPoints(scan)) points.push_back(pose * p);
+  const testing::CountedInsertion added = testing::CountAsWritten(map, points);
+  const double occupied = static_cast<double>(map.occupied() + added.fresh);
+  if (fitness == LocalFitness::kEval1) return occupied;
+  return occupied > 0 ? -static_cast<double>(map.total() + added.inside) / occupied : 0.0;
+}
+
+TEST_P(StepCorrectionTest, ScoresRandomCandidatesToTheBitAsTheEquationsAreWritten) {
+  // The map cut short of the wall at x = 6, so that some end points fall off the grid.
+  const Scene s = MakeScene(130);
+  const HitCountGrid& map = s.map;
+  const Pose2 predicted = s.next_pose * Pose2(0.12, -0.08, 3.0 * kDeg);
+  ASSERT_GT(HitCountGrid(map).AddScan(s.next, predicted), 0u);
+  const StepCorrectionProblem problem(map, s.next, predicted, Eigen::Vector3d(0.3, 0.3, 0.2),
+                                      GetParam());
+  Rng rng(5);
+  constexpr Eigen::Index kCandidates = 200;  // enough for Evaluate to use its threads
+  Eigen::MatrixXd batch(3, kCandidates);
+  for (Eigen::Index i = 0; i < kCandidates; ++i) {
+    for (Eigen::Index g = 0; g < 3; ++g)
+      batch(g, i) = rng.Uniform(problem.lower()(g), problem.upper()(g));
+  }
+  std::vector<double> fitness(kCandidates);
+  problem.Evaluate(batch, fitness);
+  for (Eigen::Index i = 0; i < kCandidates; ++i) {
+    const double want = ScoreAsWritten(map, s.next, problem.Corrected(batch.col(i)), GetParam());
+    EXPECT_EQ(fitness[static_cast<std::size_t>(i)], want) << "candidate " << i;
+    EXPECT_EQ(problem.Score(batch.col(i)), want) << "candidate " << i;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(BothScores, StepCorrectionTest,

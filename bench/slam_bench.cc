@@ -1,0 +1,130 @@
+// Paper 002's two fitness functions on the Intel log, and the local search that calls one of them
+// 310 times a scan.
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/io/carmen_reader.h"
+#include "common/slam/global_search_problem.h"
+#include "common/slam/local_search.h"
+#include "common/slam/rss_slam.h"
+#include "common/slam/step_correction_problem.h"
+#include "common/util/random.h"
+
+namespace evoslam {
+namespace {
+
+const std::filesystem::path kIntelPath = std::filesystem::path(EVOSLAM_DATA_DIR) / "intel.clf.bz2";
+
+// The Intel log, read once on first use; nullptr, the benchmark skipped, when it is absent.
+const Dataset* IntelOrSkip(benchmark::State& state) {
+  static const std::optional<Dataset> log = []() -> std::optional<Dataset> {
+    if (!std::filesystem::exists(kIntelPath)) return std::nullopt;
+    return ReadCarmen(kIntelPath);
+  }();
+  if (!log) state.SkipWithError(("data absent: " + kIntelPath.string()).c_str());
+  return log ? &*log : nullptr;
+}
+
+// A batch of candidates drawn uniformly from the problem's box.
+Eigen::MatrixXd RandomBatch(const Problem& problem, Eigen::Index n, std::uint64_t seed) {
+  Rng rng(seed);
+  Eigen::MatrixXd batch(problem.lower().size(), n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    for (Eigen::Index g = 0; g < batch.rows(); ++g) {
+      batch(g, i) = rng.Uniform(problem.lower()(g), problem.upper()(g));
+    }
+  }
+  return batch;
+}
+
+// Times Evaluate on `batch` on state.range(0) threads, then restores the thread count, so that
+// OMP_NUM_THREADS still holds for the benchmarks that follow.
+void TimeEvaluate(benchmark::State& state, const Problem& problem, const Eigen::MatrixXd& batch) {
+  std::vector<double> fitness(problem.objectives() * static_cast<std::size_t>(batch.cols()));
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    problem.Evaluate(batch, fitness);
+    benchmark::DoNotOptimize(fitness.data());
+  }
+  omp_set_num_threads(threads);
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * batch.cols()));
+}
+
+// One generation of a global search (70 candidates) over the first 300 scans, at their
+// odometry poses, re-inserted into the map of the rest of the log. Arg: threads.
+void BM_GlobalSearchEvaluate(benchmark::State& state) {
+  const Dataset* log = IntelOrSkip(state);
+  if (!log) return;
+  constexpr std::size_t kStretch = 300;
+  constexpr Eigen::Index kCandidates = 70;
+  std::vector<Pose2> poses;
+  for (const LaserScan& s : log->scans) poses.push_back(s.odometry);
+  HitCountGrid base = EmptyMapFor(*log, LocalSearchParams{});
+  for (std::size_t i = kStretch; i < log->scans.size(); ++i) base.AddScan(log->scans[i], poses[i]);
+  const GlobalSearchProblem problem(log->scans, poses, 0, kStretch, base, GlobalSearchParams{},
+                                    std::nullopt);
+  TimeEvaluate(state, problem, RandomBatch(problem, kCandidates, 1));
+  state.counters["cells"] = static_cast<double>(base.width()) * base.height();
+}
+BENCHMARK(BM_GlobalSearchEvaluate)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+// One PSO generation of the local search (10 candidates): scan 200 against the map of the 200
+// scans before it, at their odometry poses. Arg: threads.
+void BM_StepCorrectionEvaluate(benchmark::State& state) {
+  const Dataset* log = IntelOrSkip(state);
+  if (!log) return;
+  constexpr std::size_t kScan = 200;
+  constexpr Eigen::Index kCandidates = 10;
+  const LocalSearchParams params;
+  HitCountGrid map = EmptyMapFor(*log, params);
+  for (std::size_t i = 0; i < kScan; ++i) map.AddScan(log->scans[i], log->scans[i].odometry);
+  const StepCorrectionProblem problem(map, log->scans[kScan], log->scans[kScan].odometry,
+                                      params.max_error, params.fitness);
+  TimeEvaluate(state, problem, RandomBatch(problem, kCandidates, 1));
+}
+BENCHMARK(BM_StepCorrectionEvaluate)->Arg(1)->Arg(2)->UseRealTime();
+
+// The local search over the first 2000 scans of the Intel log, on OMP_NUM_THREADS threads.
+void BM_LocalSearchIntel(benchmark::State& state) {
+  const Dataset* log = IntelOrSkip(state);
+  if (!log) return;
+  Dataset first = *log;
+  first.scans.resize(2000);
+  const LocalSearchParams params;
+  for (auto _ : state) {
+    HitCountGrid map = EmptyMapFor(first, params);
+    benchmark::DoNotOptimize(RunLocalSearch(first, params, 1, map));
+  }
+  state.counters["scans"] = static_cast<double>(first.scans.size());
+}
+BENCHMARK(BM_LocalSearchIntel)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+// The whole of 002's algorithm over the first range(0) scans of the Intel log (0: all 13,631),
+// on OMP_NUM_THREADS threads. Its speed against the log's own pace is the "x real time" counter.
+void BM_RssSlamIntel(benchmark::State& state) {
+  const Dataset* log = IntelOrSkip(state);
+  if (!log) return;
+  RssSlamParams params;
+  params.max_scans = static_cast<std::size_t>(state.range(0));
+  const std::size_t scans = params.max_scans > 0 ? params.max_scans : log->scans.size();
+  for (auto _ : state) benchmark::DoNotOptimize(RunRssSlam(*log, params, 1));
+  const double recorded = log->scans[scans - 1].timestamp - log->scans.front().timestamp;
+  state.counters["scans"] = static_cast<double>(scans);
+  state.counters["x_real_time"] = benchmark::Counter(
+      recorded * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_RssSlamIntel)
+    ->Arg(3000)
+    ->Arg(0)
+    ->Iterations(1)
+    ->UseRealTime()
+    ->Unit(benchmark::kSecond);
+
+}  // namespace
+}  // namespace evoslam

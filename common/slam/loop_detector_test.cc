@@ -1,0 +1,95 @@
+#include "common/slam/loop_detector.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "common/sim/simulator.h"
+#include "common/sim/world.h"
+#include "common/util/error.h"
+
+namespace evoslam {
+namespace {
+
+// A drive through the office cluster, its true poses, and the first scan that stands within
+// 0.3 m of a scan at least 100 scans before it.
+struct Revisit {
+  Dataset log;
+  std::vector<Pose2> truth;
+  std::size_t earlier = 0, later = 0;
+};
+
+Revisit DriveBack() {
+  SimulationOptions sim;
+  sim.laser.beams = 91;
+  sim.max_scans = 300;
+  Revisit r;
+  r.log = Simulate(BuiltinWorld("office-cluster"), sim);
+  for (const LaserScan& s : r.log.scans) r.truth.push_back(*s.true_pose);
+  for (std::size_t j = 100; j < r.truth.size() && r.later == 0; ++j) {
+    for (std::size_t i = 0; i + 100 <= j; ++i) {
+      if ((r.truth[i].translation() - r.truth[j].translation()).norm() < 0.3) {
+        r.earlier = i;
+        r.later = j;
+        break;
+      }
+    }
+  }
+  EXPECT_GT(r.later, 0u) << "the route never comes back";
+  return r;
+}
+
+TEST(LoopDetectorTest, ARevisitThatDoesNotFitIsALoopWithTheTrueRelativePose) {
+  const Revisit r = DriveBack();
+  // The trajectory has drifted: the current pose is 0.4 m and 0.1 rad off.
+  std::vector<Pose2> poses(r.truth.begin(), r.truth.begin() + r.later + 1);
+  poses.back() = poses.back() * Pose2(0.4, -0.2, 0.1);
+  LoopDetectionParams params;
+  const auto loop = DetectLoop(r.log.scans, poses, r.later, params);
+  ASSERT_TRUE(loop.has_value());
+  EXPECT_EQ(loop->constraint.later, r.later);
+  EXPECT_LE(r.later - loop->constraint.earlier, r.later);
+  const Pose2 truth = r.truth[loop->constraint.earlier].inverse() * r.truth[r.later];
+  const Pose2 error = truth.inverse() * loop->constraint.relative;
+  EXPECT_LT(error.translation().norm(), 0.05);
+  EXPECT_LT(std::abs(error.theta()), 0.01);
+  EXPECT_GE(loop->score, params.min_score);
+}
+
+TEST(LoopDetectorTest, ARevisitThatFitsIsNoLoop) {
+  const Revisit r = DriveBack();
+  const std::vector<Pose2> poses(r.truth.begin(), r.truth.begin() + r.later + 1);
+  EXPECT_FALSE(DetectLoop(r.log.scans, poses, r.later, {}).has_value());
+}
+
+TEST(LoopDetectorTest, RecentPosesAndFarPlacesAreNoRevisit) {
+  const Revisit r = DriveBack();
+  std::vector<Pose2> poses(r.truth.begin(), r.truth.begin() + r.later + 1);
+  poses.back() = poses.back() * Pose2(0.4, -0.2, 0.1);
+  LoopDetectionParams params;
+  params.min_travel = 1e6;  // every earlier pose is too recent
+  EXPECT_FALSE(DetectLoop(r.log.scans, poses, r.later, params).has_value());
+  params = {};
+  params.min_score = 1.0;  // no match is that good
+  EXPECT_FALSE(DetectLoop(r.log.scans, poses, r.later, params).has_value());
+  poses.back() = Pose2(100.0, 100.0, 0.0);  // nowhere near the path
+  EXPECT_FALSE(DetectLoop(r.log.scans, poses, r.later, {}).has_value());
+}
+
+TEST(LoopDetectorTest, RefusesBadParametersAndScansWithoutPoses) {
+  const Revisit r = DriveBack();
+  const std::vector<Pose2> poses(r.truth.begin(), r.truth.begin() + 10);
+  EXPECT_THROW(DetectLoop(r.log.scans, poses, 10, {}), Error);
+  LoopDetectionParams params;
+  params.min_score = 1.5;
+  EXPECT_THROW(ValidateLoopDetectionParams(params), Error);
+  params = {};
+  params.revisit_radius = 0.0;
+  EXPECT_THROW(ValidateLoopDetectionParams(params), Error);
+  params = {};
+  params.min_gap = 0;
+  EXPECT_THROW(ValidateLoopDetectionParams(params), Error);
+}
+
+}  // namespace
+}  // namespace evoslam

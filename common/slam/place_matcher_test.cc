@@ -1,0 +1,69 @@
+#include "common/slam/place_matcher.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "common/sim/simulator.h"
+#include "common/sim/world.h"
+#include "common/util/error.h"
+
+namespace evoslam {
+namespace {
+
+Dataset Drive() {
+  SimulationOptions sim;
+  sim.laser.beams = 91;
+  sim.max_scans = 40;
+  return Simulate(BuiltinWorld("office-cluster"), sim);
+}
+
+// The place: scans [0, 20) at their true poses.
+PlaceMatcher PlaceOf(const Dataset& d) {
+  std::vector<LaserScan> scans(d.scans.begin(), d.scans.begin() + 20);
+  std::vector<Pose2> poses;
+  for (const LaserScan& s : scans) poses.push_back(*s.true_pose);
+  return PlaceMatcher(scans, poses, 0.05, 0.1, 1.0);
+}
+
+TEST(PlaceMatcherTest, FindsAScanOfThePlaceFromAFarGuess) {
+  const Dataset d = Drive();
+  const PlaceMatcher place = PlaceOf(d);
+  const LaserScan& scan = d.scans[10];
+  const Pose2 truth = *scan.true_pose;
+  const std::vector<Eigen::Vector2d> points = ReturnPoints(scan);
+  const Pose2 guess = truth * Pose2(0.6, -0.4, 0.2);
+  const PlaceMatcher::Match m = place.Search(points, guess, 1.0, 0.3);
+  EXPECT_LT((m.pose.translation() - truth.translation()).norm(), 0.03);
+  EXPECT_LT(std::abs(WrapAngle(m.pose.theta() - truth.theta())), 0.01);
+  EXPECT_GT(m.score, 0.8);
+  EXPECT_LT(place.Score(points, guess), 0.5 * m.score);
+  // Outside the window it cannot be found.
+  const PlaceMatcher::Match narrow = place.Search(points, guess, 0.2, 0.05);
+  EXPECT_GT((narrow.pose.translation() - truth.translation()).norm(), 0.2);
+}
+
+TEST(PlaceMatcherTest, ScoresAreMeanLikelihoods) {
+  const Dataset d = Drive();
+  const PlaceMatcher place = PlaceOf(d);
+  const std::vector<Eigen::Vector2d> points = ReturnPoints(d.scans[5]);
+  const double at_truth = place.Score(points, *d.scans[5].true_pose);
+  EXPECT_GT(at_truth, 0.9);
+  EXPECT_LE(at_truth, 1.0);
+  EXPECT_EQ(place.Score({}, *d.scans[5].true_pose), 0.0);
+  // Far from the place no return lands near an obstacle.
+  EXPECT_EQ(place.Score(points, Pose2(500, 500, 0)), 0.0);
+}
+
+TEST(PlaceMatcherTest, RefusesMismatchedInputs) {
+  const Dataset d = Drive();
+  const std::vector<LaserScan> scans(d.scans.begin(), d.scans.begin() + 2);
+  const std::vector<Pose2> one = {Pose2()};
+  EXPECT_THROW(PlaceMatcher(scans, one, 0.05, 0.1, 1.0), Error);
+  const std::vector<Pose2> two = {Pose2(), Pose2()};
+  EXPECT_THROW(PlaceMatcher(scans, two, 0.0, 0.1, 1.0), Error);
+  EXPECT_THROW(PlaceMatcher(scans, two, 0.05, -1.0, 1.0), Error);
+}
+
+}  // namespace
+}  // namespace evoslam

@@ -1,0 +1,176 @@
+#include "common/slam/rss_slam.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "common/sim/simulator.h"
+#include "common/sim/world.h"
+#include "common/slam/slam_params.h"
+#include "common/util/error.h"
+
+namespace evoslam {
+namespace {
+
+Dataset Drive(std::size_t scans) {
+  SimulationOptions sim;
+  sim.laser.beams = 91;
+  sim.noise.odometry.rotation_bias = 0.02;
+  sim.max_scans = scans;
+  return Simulate(BuiltinWorld("office-boxes"), sim);
+}
+
+// Small searches, so that a run takes a fraction of a second.
+RssSlamParams Quick() {
+  RssSlamParams p;
+  p.local.iterations = 10;
+  p.global_every = 25;
+  p.generations = 4;
+  p.global.partitions = 3;
+  return p;
+}
+
+void ExpectSameRun(const RssSlamResult& a, const RssSlamResult& b) {
+  ASSERT_EQ(a.trajectory.size(), b.trajectory.size());
+  for (std::size_t i = 0; i < a.trajectory.size(); ++i) {
+    EXPECT_EQ(a.trajectory[i].pose.x(), b.trajectory[i].pose.x()) << "scan " << i;
+    EXPECT_EQ(a.trajectory[i].pose.y(), b.trajectory[i].pose.y()) << "scan " << i;
+    EXPECT_EQ(a.trajectory[i].pose.theta(), b.trajectory[i].pose.theta()) << "scan " << i;
+  }
+  EXPECT_EQ(a.local_evaluations, b.local_evaluations);
+  EXPECT_EQ(a.global_evaluations, b.global_evaluations);
+  ASSERT_EQ(a.global_searches.size(), b.global_searches.size());
+  for (std::size_t g = 0; g < a.global_searches.size(); ++g) {
+    EXPECT_EQ(a.global_searches[g].applied, b.global_searches[g].applied);
+    EXPECT_EQ(a.global_searches[g].after[0], b.global_searches[g].after[0]);
+  }
+  EXPECT_EQ(a.map.total(), b.map.total());
+  EXPECT_EQ(a.map.occupied(), b.map.occupied());
+}
+
+TEST(RssSlamTest, LocalOnlyIsTheLocalSearch) {
+  const Dataset d = Drive(60);
+  RssSlamParams params = Quick();
+  params.global_search = false;
+  const RssSlamResult slam = RunRssSlam(d, params, 5);
+  HitCountGrid map = EmptyMapFor(d, params.local);
+  const LocalSearchResult local = RunLocalSearch(d, params.local, 5, map);
+  ASSERT_EQ(slam.trajectory.size(), local.trajectory.size());
+  for (std::size_t i = 0; i < local.trajectory.size(); ++i) {
+    EXPECT_EQ(slam.trajectory[i].pose.translation(), local.trajectory[i].pose.translation());
+    EXPECT_EQ(slam.trajectory[i].timestamp, d.scans[i].timestamp);
+  }
+  EXPECT_EQ(slam.local_evaluations, local.evaluations);
+  EXPECT_TRUE(slam.global_searches.empty());
+  EXPECT_EQ(slam.map.total(), map.total());
+}
+
+TEST(RssSlamTest, GlobalSearchesRunEveryKStepsOverTheStepsSinceTheLast) {
+  const Dataset d = Drive(80);
+  const RssSlamParams params = Quick();
+  const RssSlamResult r = RunRssSlam(d, params, 5);
+  std::size_t periodic = 0, next_first = 0;
+  for (const GlobalSearchRecord& g : r.global_searches) {
+    if (g.loop) continue;
+    ++periodic;
+    EXPECT_EQ(g.first, next_first);
+    EXPECT_EQ(g.last - g.first, params.global_every);
+    next_first = g.last;
+    EXPECT_GT(g.evaluations, 0u);
+    // Applied exactly when the trajectory as it stood does not dominate the correction.
+    EXPECT_EQ(g.applied, g.after[0] < g.before[0] || g.after[1] < g.before[1]);
+  }
+  EXPECT_EQ(periodic, 80 / params.global_every);
+  EXPECT_EQ(r.global_evaluations, [&] {
+    std::size_t n = 0;
+    for (const GlobalSearchRecord& g : r.global_searches) n += g.evaluations;
+    return n;
+  }());
+}
+
+TEST(RssSlamTest, ProblemsRebuiltFromTheWireGiveTheSameRun) {
+  const Dataset d = Drive(60);
+  const RssSlamParams params = Quick();
+  const RssSlamResult here = RunRssSlam(d, params, 9);
+
+  // What a worker does: the task through its wire form, the base map and problem rebuilt.
+  struct Rebuilt {
+    std::vector<Pose2> poses;
+    std::optional<HitCountGrid> base;
+    std::optional<GlobalSearchProblem> problem;
+  };
+  std::vector<std::shared_ptr<Rebuilt>> built;
+  RssSlamRuntime runtime;
+  runtime.global = [&](const GlobalSearchTask& task, const GlobalSearchProblem&) {
+    auto r = std::make_shared<Rebuilt>();
+    const GlobalSearchTask copy = GlobalSearchTaskFromProto(ToProto(task), r->poses);
+    r->base.emplace(BaseMapFor(d, r->poses, copy.first, copy.last, params.local));
+    r->problem.emplace(MakeGlobalSearchProblem(d, copy, params, *r->base));
+    built.push_back(r);
+    return LocalIslandStepper(*r->problem, 1);
+  };
+  const RssSlamResult remote = RunRssSlam(d, params, 9, runtime);
+  EXPECT_EQ(built.size(), here.global_searches.size());
+  ExpectSameRun(here, remote);
+}
+
+TEST(RssSlamTest, ResumingFromAnyCheckpointGivesTheUninterruptedRun) {
+  const Dataset d = Drive(60);
+  const RssSlamParams params = Quick();
+  std::vector<RssSlamState> states;
+  RssSlamRuntime record;
+  record.checkpoint = [&](const RssSlamState& s) {
+    if (s.next_scan == 26 || s.next_scan == 40) states.push_back(s);
+  };
+  const RssSlamResult whole = RunRssSlam(d, params, 3, record);
+  ASSERT_EQ(states.size(), 2u);
+  EXPECT_EQ(states[0].global_searches.size(), 1u);  // just after the first global search
+  for (const RssSlamState& state : states) {
+    RssSlamRuntime resume;
+    resume.resume = &state;
+    ExpectSameRun(whole, RunRssSlam(d, params, 3, resume));
+  }
+  RssSlamState broken = states[0];
+  broken.poses.pop_back();
+  RssSlamRuntime bad;
+  bad.resume = &broken;
+  EXPECT_THROW(RunRssSlam(d, params, 3, bad), Error);
+}
+
+TEST(RssSlamTest, SeedsChangeTheRun) {
+  const Dataset d = Drive(40);
+  const RssSlamParams params = Quick();
+  const RssSlamResult a = RunRssSlam(d, params, 1), b = RunRssSlam(d, params, 2);
+  EXPECT_NE(a.trajectory.back().pose.x(), b.trajectory.back().pose.x());
+}
+
+TEST(RssSlamTest, PeriodicBoundsAreTheRefinementsAndLoopBoundsFollowTheDiscrepancy) {
+  RssSlamParams params;
+  const std::vector<Pose2> poses = {Pose2(0, 0, 0), Pose2(1, 0, 0), Pose2(2, 0.3, 0.05)};
+  EXPECT_EQ(GlobalSearchBounds(params, poses, std::nullopt), params.refine_error);
+  // The loop says scan 2 stands where scan 0 does: 2.02 m and 0.05 rad away.
+  const LoopConstraint loop{0, 2, Pose2()};
+  const Eigen::Vector3d b = GlobalSearchBounds(params, poses, loop);
+  EXPECT_EQ(b.x(), params.global.max_error.x());  // capped
+  EXPECT_NEAR(b.z(), 1.5 * 0.05 + params.refine_error.z(), 1e-12);
+}
+
+TEST(RssSlamTest, RefusesBadParametersAndEmptyLogs) {
+  RssSlamParams params;
+  params.generations = 0;
+  EXPECT_THROW(ValidateRssSlamParams(params), Error);
+  params = {};
+  params.preset = "no-such-preset";
+  EXPECT_THROW(ValidateRssSlamParams(params), Error);
+  params = {};
+  params.refine_error.x() = -1.0;
+  EXPECT_THROW(ValidateRssSlamParams(params), Error);
+  Dataset empty;
+  empty.source = "empty.clf";
+  EXPECT_THROW(RunRssSlam(empty, {}, 1), Error);
+}
+
+}  // namespace
+}  // namespace evoslam

@@ -1,0 +1,131 @@
+#include "common/slam/slam_params.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "common/util/error.h"
+
+namespace evoslam {
+namespace {
+
+std::string ErrorOf(const proto::SlamParams& p) {
+  try {
+    RssSlamParamsFromProto(p);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SlamParamsTest, UnsetFieldsTakeTheDefaults) {
+  const RssSlamParams defaults;
+  const RssSlamParams r = RssSlamParamsFromProto({});
+  EXPECT_EQ(r.local.max_error, defaults.local.max_error);
+  EXPECT_EQ(r.global.partitions, defaults.global.partitions);
+  EXPECT_EQ(r.global_every, defaults.global_every);
+  EXPECT_EQ(r.loops.min_score, defaults.loops.min_score);
+  EXPECT_TRUE(r.global_search);
+  const proto::SlamParams complete = CompleteSlamParams({});
+  EXPECT_EQ(complete.method(), "rss");
+  EXPECT_EQ(complete.seed(), 1u);
+  EXPECT_EQ(complete.local_fitness(), "eval1");
+  EXPECT_EQ(complete.generations(), 100u);
+  EXPECT_EQ(complete.local_max_error_size(), 3);
+}
+
+TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
+  proto::SlamParams p;
+  p.set_global_every(0);  // only on loops
+  p.set_w2(0.0);
+  p.set_partitions(5);
+  p.set_local_fitness("eval2");
+  p.set_local_only(true);
+  for (double v : {0.2, 0.3, 0.04}) p.add_local_max_error(v);
+  p.set_seed(42);
+  const RssSlamParams r = RssSlamParamsFromProto(p);
+  EXPECT_EQ(r.global_every, 0u);
+  EXPECT_EQ(r.global.w2, 0.0);
+  EXPECT_EQ(r.global.partitions, 5u);
+  EXPECT_EQ(r.local.fitness, LocalFitness::kEval2);
+  EXPECT_FALSE(r.global_search);
+  EXPECT_EQ(r.local.max_error, Eigen::Vector3d(0.2, 0.3, 0.04));
+  const proto::SlamParams complete = CompleteSlamParams(p);
+  EXPECT_EQ(complete.seed(), 42u);
+  // Completing is idempotent, and the complete form reads back to the same parameters.
+  EXPECT_EQ(CompleteSlamParams(complete).SerializeAsString(), complete.SerializeAsString());
+  EXPECT_EQ(RssSlamParamsFromProto(complete).local.max_error, r.local.max_error);
+}
+
+TEST(SlamParamsTest, BadFieldsAreNamed) {
+  proto::SlamParams p;
+  p.set_method("gmapping");
+  EXPECT_NE(ErrorOf(p).find("gmapping"), std::string::npos);
+  p = {};
+  p.add_sigma(0.3);
+  EXPECT_NE(ErrorOf(p).find("sigma"), std::string::npos);
+  p = {};
+  p.set_local_fitness("eval3");
+  EXPECT_NE(ErrorOf(p).find("eval3"), std::string::npos);
+  p = {};
+  p.set_local_particles(1);
+  EXPECT_NE(ErrorOf(p).find("particles"), std::string::npos);
+  p = {};
+  p.set_min_match_score(2.0);
+  EXPECT_NE(ErrorOf(p).find("score"), std::string::npos);
+  p = {};
+  p.set_preset("nope");
+  EXPECT_NE(ErrorOf(p).find("nope"), std::string::npos);
+}
+
+TEST(SlamParamsTest, GlobalSearchTasksRoundTrip) {
+  const std::vector<Pose2> poses = {Pose2(0, 0, 0), Pose2(1, 0.5, 0.1), Pose2(2, 1, 0.2),
+                                    Pose2(2.5, 1.5, 0.3)};
+  GlobalSearchTask task;
+  task.index = 7;
+  task.first = 1;
+  task.last = 4;
+  task.poses = poses;
+  task.loop = LoopConstraint{0, 3, Pose2(0.1, -0.2, 0.03)};
+  task.max_error = Eigen::Vector3d(0.3, 0.4, 0.05);
+  std::vector<Pose2> storage;
+  const GlobalSearchTask back = GlobalSearchTaskFromProto(ToProto(task), storage);
+  EXPECT_EQ(back.index, 7u);
+  EXPECT_EQ(back.first, 1u);
+  EXPECT_EQ(back.last, 4u);
+  ASSERT_EQ(back.poses.size(), 4u);
+  EXPECT_EQ(back.poses[2].translation(), poses[2].translation());
+  EXPECT_EQ(back.poses[3].theta(), poses[3].theta());
+  ASSERT_TRUE(back.loop.has_value());
+  EXPECT_EQ(back.loop->later, 3u);
+  EXPECT_EQ(back.loop->relative.translation(), task.loop->relative.translation());
+  EXPECT_EQ(back.max_error, task.max_error);
+  task.loop.reset();
+  EXPECT_FALSE(GlobalSearchTaskFromProto(ToProto(task), storage).loop.has_value());
+}
+
+TEST(SlamParamsTest, TasksThatDoNotHangTogetherAreRefused) {
+  const std::vector<Pose2> poses = {Pose2(), Pose2(1, 0, 0), Pose2(2, 0, 0)};
+  GlobalSearchTask task;
+  task.first = 1;
+  task.last = 3;
+  task.poses = poses;
+  std::vector<Pose2> storage;
+  proto::GlobalSearchSpec spec = ToProto(task);
+  spec.set_last(5);  // more scans than poses
+  EXPECT_THROW(GlobalSearchTaskFromProto(spec, storage), Error);
+  spec = ToProto(task);
+  spec.mutable_y()->RemoveLast();
+  EXPECT_THROW(GlobalSearchTaskFromProto(spec, storage), Error);
+  spec = ToProto(task);
+  spec.mutable_loop()->set_earlier(2);
+  spec.mutable_loop()->set_later(1);
+  EXPECT_THROW(GlobalSearchTaskFromProto(spec, storage), Error);
+  spec = ToProto(task);
+  spec.set_first(3);
+  EXPECT_THROW(GlobalSearchTaskFromProto(spec, storage), Error);
+}
+
+}  // namespace
+}  // namespace evoslam

@@ -1,0 +1,64 @@
+#include "coordinator/slam_job.h"
+
+#include <algorithm>
+
+#include "common/report/slam_outputs.h"
+#include "common/service/job_inputs.h"
+#include "common/service/slam_checkpoint.h"
+#include "common/slam/rss_slam.h"
+#include "common/slam/slam_params.h"
+
+namespace evoslam {
+
+proto::ProblemSpec SlamProblemOf(const proto::JobSpec& spec) {
+  proto::ProblemSpec problem;
+  problem.set_kind(proto::JOB_KIND_SLAM);
+  *problem.mutable_log() = spec.log();
+  *problem.mutable_slam() = CompleteSlamParams(spec.slam());
+  return problem;
+}
+
+std::vector<proto::ResultFile> RunSlamJob(const JobContext& context) {
+  const proto::JobSpec& spec = context.spec;
+  const proto::ProblemSpec job = SlamProblemOf(spec);
+  const proto::SlamParams& params = job.slam();
+  const RssSlamParams rss = RssSlamParamsFromProto(params);
+  const Dataset dataset = LoadJobLog(*context.files, spec.log(), params.lenient());
+  const std::size_t scans =
+      rss.max_scans > 0 ? std::min(rss.max_scans, dataset.scans.size()) : dataset.scans.size();
+
+  const auto resume = ResumeState<proto::SlamCheckpoint>(context, RssSlamStateFromProto);
+  CheckpointThrottle throttle(context);
+  std::uint64_t evaluations = resume ? resume->local_evaluations + resume->global_evaluations : 0;
+  RssSlamRuntime runtime;
+  runtime.resume = resume ? &*resume : nullptr;
+  runtime.global = [&](const GlobalSearchTask& task, const GlobalSearchProblem&) {
+    proto::ProblemSpec problem = job;
+    *problem.mutable_global_search() = ToProto(task);
+    return IslandStepper([&context, problem = std::move(problem)](
+                             std::vector<Island>& islands, bool start, std::size_t generations) {
+      EvolveIslandsRemotely(context, problem, islands, start, generations);
+    });
+  };
+  runtime.checkpoint = [&](const RssSlamState& state) {
+    // The local search runs here, between tasks: a cancel or a shutdown must not wait for the
+    // next global search to be noticed.
+    context.board->ThrowIfInterrupted(context.job_id);
+    evaluations = state.local_evaluations + state.global_evaluations;
+    throttle.Offer([&] { return ToProto(state).SerializeAsString(); });
+    // Reported here rather than when RunRssSlam reports it, just before the checkpoint, so that
+    // the status never runs ahead of what a restart would resume from.
+    ReportProgress(context, "local search", state.next_scan, scans, evaluations);
+  };
+  runtime.progress = [&](const std::string& phase, std::size_t done, std::size_t total) {
+    if (phase != "local search") ReportProgress(context, phase, done, total, evaluations);
+  };
+  // Progress shows where the job stands from the start, a resumed job included.
+  ReportProgress(context, "local search", resume ? resume->next_scan : 0, scans, evaluations);
+  const RssSlamResult result = RunRssSlam(dataset, rss, params.seed(), runtime);
+
+  return SlamOutputs(dataset, params, result, LoadJobRelations(*context.files, spec.relations()),
+                     context.worker_threads);
+}
+
+}  // namespace evoslam
