@@ -1,4 +1,5 @@
 // The evoslam command line end to end: outputs, exit codes and error messages.
+#include <google/protobuf/util/json_util.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -14,6 +15,7 @@
 
 #include "common/io/trajectory_io.h"
 #include "common/util/scratch_dir.h"
+#include "evoslam/slam.pb.h"
 
 namespace {
 
@@ -279,6 +281,53 @@ TEST_F(CliTest, SlamFlagsSetTheirParameters) {
     EXPECT_NE(set.output.find(std::string(line) + "\n"), std::string::npos) << line << "\n"
                                                                             << set.output;
   }
+}
+
+evoslam::proto::SlamReport ReadSlamReport(const fs::path& path) {
+  evoslam::proto::SlamReport report;
+  EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(ReadAll(path), &report).ok()) << path;
+  return report;
+}
+
+// The main job: SLAM on a simulated drive, every output written, errors against the truth the
+// simulation logged below odometry's; --local-only runs no global search.
+TEST_F(CliTest, SlamMapsASimulatedWorld) {
+  const std::string slam =
+      "slam --world office-cluster --max-scans 120 --generations 5 --global-every 50 --seed 2";
+  const Result r = RunCli(slam + " --out " + Path("run"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* f :
+       {"log.clf", "truth.txt", "world.lines", "trajectory.txt", "trajectory.tum", "map.pgm",
+        "map.yaml", "map.png", "map_trajectory.png", "report.json", "summary.txt"}) {
+    EXPECT_TRUE(fs::exists(dir_ / "run" / f)) << f;
+  }
+  EXPECT_NE(r.output.find("RMS error vs ground truth"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(Path("run/map_trajectory.png")), std::string::npos) << r.output;
+  EXPECT_EQ(evoslam::ReadTrajectory(dir_ / "run" / "trajectory.txt").size(), 120u);
+  const evoslam::proto::SlamReport report = ReadSlamReport(dir_ / "run" / "report.json");
+  EXPECT_EQ(report.scans(), 120u);
+  EXPECT_EQ(report.params().generations(), 5u);
+  EXPECT_EQ(report.absolute_errors().poses(), 120u);
+  EXPECT_LT(report.absolute_errors().rms_translation_m(),
+            0.5 * report.odometry_absolute_errors().rms_translation_m());
+  EXPECT_GE(report.global_searches_size(), 2);  // every 50 scans
+
+  const Result local = RunCli(slam + " --local-only --out " + Path("local"));
+  ASSERT_EQ(local.status, 0) << local.output;
+  const evoslam::proto::SlamReport local_report = ReadSlamReport(dir_ / "local" / "report.json");
+  EXPECT_TRUE(local_report.params().local_only());
+  EXPECT_EQ(local_report.global_searches_size(), 0);
+  EXPECT_EQ(local_report.global_evaluations(), 0u);
+  EXPECT_EQ(evoslam::ReadTrajectory(dir_ / "local" / "trajectory.txt").size(), 120u);
+}
+
+// A bad log found by the service is named as the user named it, with its line.
+TEST_F(CliTest, SlamOnAMalformedLogFailsNamingFileAndLine) {
+  std::ofstream(Path("broken.clf"))
+      << "# header\nODOM 0 0 0 0 0 0 1.0 nohost 0\nFLASER 3 1.0 2.0 x 0 0 0 0 0 0 1.0 nohost 0\n";
+  const Result r = RunCli("slam --log " + Path("broken.clf") + " --out " + Path("o"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("broken.clf:3"), std::string::npos) << r.output;
 }
 
 TEST_F(CliTest, InfoDescribesTheIntelLog) {
