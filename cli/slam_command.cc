@@ -1,5 +1,6 @@
 #include <fmt/format.h>
 #include <google/protobuf/text_format.h>
+#include <spdlog/spdlog.h>
 
 #include <cstdint>
 #include <cstdio>
@@ -183,8 +184,9 @@ void Run(const SlamArgs& a) {
     const World w = BuiltinWorld(world);
     const Dataset dataset = Simulate(w, WorldDrive(complete.seed(), complete.max_scans()));
     WriteSimulation(dataset, w, a.run.out);
-    std::printf("simulated %zu scans of %s into %s/{log.clf,world.lines,truth.txt}\n",
-                dataset.scans.size(), w.name.c_str(), a.run.out.c_str());
+    // On stderr with the job's progress: with --detach, stdout is the job id alone.
+    spdlog::info("simulated {} scans of {} into {}/{{log.clf,world.lines,truth.txt}}",
+                 dataset.scans.size(), w.name, a.run.out);
   }
 
   ServiceSession session(a.run.service,
