@@ -93,6 +93,7 @@ void AddLocalizeJobOptions(CLI::App* cmd, LocalizeArgs& a, bool with_islands) {
   cmd->add_option("--max-scans", a.max_scans, "localize only the first N scans");
   cmd->add_option("--relations", a.relations, "relations file for the relative error");
   cmd->add_option("--seed", a.seed, "random seed");
+  cmd->add_flag("--lenient", a.lenient, "skip malformed log lines and report how many");
 }
 
 void NoteGivenOptions(const CLI::App* cmd, LocalizeArgs& a) {
