@@ -14,6 +14,9 @@ int main(int argc, char** argv) {
   CLI::App app{"evoslam: maps and trajectories from 2D laser logs with evolutionary optimisers"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "evoslam 0.1.0");
+  app.footer(
+      "Start with `evoslam slam --out out/slam`: SLAM on a simulated drive through a built-in "
+      "office, no input files needed. `evoslam SUBCOMMAND --help` lists a subcommand's options.");
   std::string level = "info";
   app.add_option("--log-level", level, "trace, debug, info, warn, error or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
