@@ -1,7 +1,5 @@
 #include "coordinator/slam_job.h"
 
-#include <algorithm>
-
 #include "common/report/slam_outputs.h"
 #include "common/service/job_inputs.h"
 #include "common/service/slam_checkpoint.h"
@@ -24,8 +22,7 @@ std::vector<proto::ResultFile> RunSlamJob(const JobContext& context) {
   const proto::SlamParams& params = job.slam();
   const RssSlamParams rss = RssSlamParamsFromProto(params);
   const Dataset dataset = LoadJobLog(*context.files, spec.log(), params.lenient());
-  const std::size_t scans =
-      rss.max_scans > 0 ? std::min(rss.max_scans, dataset.scans.size()) : dataset.scans.size();
+  const std::size_t scans = ScansToMap(dataset, rss);
 
   const auto resume = ResumeState<proto::SlamCheckpoint>(context, RssSlamStateFromProto);
   CheckpointThrottle throttle(context);
@@ -46,12 +43,9 @@ std::vector<proto::ResultFile> RunSlamJob(const JobContext& context) {
     context.board->ThrowIfInterrupted(context.job_id);
     evaluations = state.local_evaluations + state.global_evaluations;
     throttle.Offer([&] { return ToProto(state).SerializeAsString(); });
-    // Reported here rather than when RunRssSlam reports it, just before the checkpoint, so that
-    // the status never runs ahead of what a restart would resume from.
-    ReportProgress(context, "local search", state.next_scan, scans, evaluations);
   };
   runtime.progress = [&](const std::string& phase, std::size_t done, std::size_t total) {
-    if (phase != "local search") ReportProgress(context, phase, done, total, evaluations);
+    ReportProgress(context, phase, done, total, evaluations);
   };
   // Progress shows where the job stands from the start, a resumed job included.
   ReportProgress(context, "local search", resume ? resume->next_scan : 0, scans, evaluations);

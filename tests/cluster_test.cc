@@ -1149,6 +1149,7 @@ class SlamJobTest : public ServiceTest {
     p.set_generations(20);  // two epochs: migrants travel between them
     p.set_partitions(4);
     p.set_global_every(static_cast<std::uint32_t>(Scans(100)));
+    p.set_check_interval_scans(1);  // the drive's one revisit lasts a few scans
     return p;
   }
 

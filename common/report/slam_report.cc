@@ -8,16 +8,6 @@
 
 namespace evoslam {
 
-proto::LoopClosureRecord ToProto(const LoopClosure& loop) {
-  proto::LoopClosureRecord p;
-  p.set_earlier(static_cast<std::uint32_t>(loop.constraint.earlier));
-  p.set_later(static_cast<std::uint32_t>(loop.constraint.later));
-  const Pose2& r = loop.constraint.relative;
-  for (double v : {r.x(), r.y(), r.theta()}) p.add_relative(v);
-  p.set_score(loop.score);
-  return p;
-}
-
 proto::GlobalSearchRecord ToProto(const GlobalSearchRecord& search) {
   proto::GlobalSearchRecord p;
   p.set_first(static_cast<std::uint32_t>(search.first));

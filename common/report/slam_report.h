@@ -8,11 +8,11 @@
 #include "common/report/localize_report.h"
 #include "common/sensor/dataset.h"
 #include "common/slam/rss_slam.h"
+#include "common/slam/slam_params.h"
 #include "evoslam/slam.pb.h"
 
 namespace evoslam {
 
-proto::LoopClosureRecord ToProto(const LoopClosure& loop);
 proto::GlobalSearchRecord ToProto(const GlobalSearchRecord& search);
 proto::SlamPhaseTimes ToProto(const SlamPhaseTimes& times);
 

@@ -13,15 +13,6 @@ std::string Scans(std::uint64_t first, std::uint64_t last) {
   return "scans [" + std::to_string(first) + ", " + std::to_string(last) + ")";
 }
 
-LoopClosure LoopFromProto(const proto::LoopClosureRecord& r, std::size_t next_scan) {
-  if (r.relative_size() != 3 || !(r.earlier() < r.later()) || r.later() >= next_scan) {
-    throw Error("SLAM checkpoint: the loop from scan " + std::to_string(r.later()) + " back to " +
-                std::to_string(r.earlier()) + " with " + std::to_string(r.relative_size()) +
-                " relative values does not fit " + Scans(0, next_scan));
-  }
-  return {{r.earlier(), r.later(), Pose2(r.relative(0), r.relative(1), r.relative(2))}, r.score()};
-}
-
 // The record keeps only whether a loop triggered the search; that loop is the one detected at
 // the search's last scan, which the checkpoint's loops hold.
 GlobalSearchRecord SearchFromProto(const proto::GlobalSearchRecord& r,
@@ -93,7 +84,7 @@ RssSlamState RssSlamStateFromProto(const proto::SlamCheckpoint& c) {
   state.poses.reserve(n);
   for (int i = 0; i < c.x_size(); ++i) state.poses.emplace_back(c.x(i), c.y(i), c.theta(i));
   for (const proto::LoopClosureRecord& loop : c.loops()) {
-    state.loops.push_back(LoopFromProto(loop, n));
+    state.loops.push_back(LoopClosureFromProto(loop, n, "SLAM checkpoint"));
   }
   for (const proto::GlobalSearchRecord& search : c.global_searches()) {
     state.global_searches.push_back(SearchFromProto(search, state.loops, n));

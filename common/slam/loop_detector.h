@@ -26,7 +26,7 @@ struct LoopDetectionParams {
   double match_window_theta = 0.35;  // rad, half-width
   // The match is trusted when this fraction of the scan's returns land near the place's
   // obstacles (the likelihood score's mean, 0 to 1)...
-  double min_score = 0.6;
+  double min_score = 0.8;
   // ...and the scan does not fit where the trajectory puts it when the match moves it further
   // than this.
   double fit_tolerance = 0.1;         // m

@@ -15,11 +15,6 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::size_t ScansOf(const Dataset& dataset, const RssSlamParams& params) {
-  const std::size_t n = dataset.scans.size();
-  return params.max_scans > 0 ? std::min(n, params.max_scans) : n;
-}
-
 // The stretch a global search covers when it runs after scan `current`: the path between a
 // loop's two observations, which is what must bend to close it, or else the steps since the
 // last global search; at most max_stretch steps.
@@ -50,6 +45,11 @@ std::optional<std::size_t> PickWithin(const Eigen::MatrixXd& f, double max_f1) {
 }
 
 }  // namespace
+
+std::size_t ScansToMap(const Dataset& dataset, const RssSlamParams& params) {
+  const std::size_t n = dataset.scans.size();
+  return params.max_scans > 0 ? std::min(n, params.max_scans) : n;
+}
 
 void ValidateRssSlamParams(const RssSlamParams& params) {
   ValidateLocalSearchParams(params.local);
@@ -105,7 +105,7 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
   ValidateRssSlamParams(params);
   if (dataset.scans.empty()) throw Error(dataset.source + ": the log has no laser scans");
   const auto run_start = std::chrono::steady_clock::now();
-  const std::size_t n = ScansOf(dataset, params);
+  const std::size_t n = ScansToMap(dataset, params);
   const Rng root(seed);
 
   RssSlamState state = runtime.resume ? *runtime.resume : RssSlamState{};
@@ -212,8 +212,9 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
     }
     state.next_scan = i + 1;
     state.times.total = resumed_total + SecondsSince(run_start);
-    if (runtime.progress) runtime.progress("local search", i + 1, n);
+    // The checkpoint first, so that progress never runs ahead of what a resume would start from.
     if (runtime.checkpoint) runtime.checkpoint(state);
+    if (runtime.progress) runtime.progress("local search", i + 1, n);
   }
 
   RssSlamResult result{.trajectory = {},

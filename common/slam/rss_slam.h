@@ -46,6 +46,9 @@ struct RssSlamParams {
 
 void ValidateRssSlamParams(const RssSlamParams& params);
 
+// The number of scans a run over `dataset` maps.
+std::size_t ScansToMap(const Dataset& dataset, const RssSlamParams& params);
+
 // The island model each global search runs.
 IslandModelParams GlobalIslandModel(const RssSlamParams& params);
 
@@ -105,7 +108,7 @@ struct RssSlamRuntime {
   // The stepper of a global search's islands; empty: local threads.
   std::function<IslandStepper(const GlobalSearchTask& task, const GlobalSearchProblem& problem)>
       global;
-  // After every scan and every global search.
+  // After every scan (and the global search it started, if any), before its progress.
   std::function<void(const RssSlamState&)> checkpoint;
   // Phase "local search" (scans done of all) and "global search" (generations of one search).
   std::function<void(const std::string& phase, std::size_t done, std::size_t total)> progress;

@@ -119,6 +119,26 @@ proto::SlamParams CompleteSlamParams(const proto::SlamParams& given) {
   return p;
 }
 
+proto::LoopClosureRecord ToProto(const LoopClosure& loop) {
+  proto::LoopClosureRecord p;
+  p.set_earlier(static_cast<std::uint32_t>(loop.constraint.earlier));
+  p.set_later(static_cast<std::uint32_t>(loop.constraint.later));
+  const Pose2& r = loop.constraint.relative;
+  for (double v : {r.x(), r.y(), r.theta()}) p.add_relative(v);
+  p.set_score(loop.score);
+  return p;
+}
+
+LoopClosure LoopClosureFromProto(const proto::LoopClosureRecord& r, std::size_t scans,
+                                 const std::string& what) {
+  if (r.relative_size() != 3 || !(r.earlier() < r.later()) || r.later() >= scans) {
+    throw Error(what + ": the loop from scan " + std::to_string(r.later()) + " back to " +
+                std::to_string(r.earlier()) + " with " + std::to_string(r.relative_size()) +
+                " relative values does not fit scans [0, " + std::to_string(scans) + ")");
+  }
+  return {{r.earlier(), r.later(), Pose2(r.relative(0), r.relative(1), r.relative(2))}, r.score()};
+}
+
 proto::GlobalSearchSpec ToProto(const GlobalSearchTask& task) {
   proto::GlobalSearchSpec spec;
   spec.set_index(task.index);
@@ -129,13 +149,7 @@ proto::GlobalSearchSpec ToProto(const GlobalSearchTask& task) {
     spec.add_y(task.poses[k].y());
     spec.add_theta(task.poses[k].theta());
   }
-  if (task.loop) {
-    proto::LoopClosureRecord& loop = *spec.mutable_loop();
-    loop.set_earlier(static_cast<std::uint32_t>(task.loop->earlier));
-    loop.set_later(static_cast<std::uint32_t>(task.loop->later));
-    const Pose2& r = task.loop->relative;
-    for (double v : {r.x(), r.y(), r.theta()}) loop.add_relative(v);
-  }
+  if (task.loop) *spec.mutable_loop() = ToProto(LoopClosure{*task.loop, 0.0});
   SetTriple(spec.mutable_max_error(), task.max_error);
   return spec;
 }
@@ -161,14 +175,8 @@ GlobalSearchTask GlobalSearchTaskFromProto(const proto::GlobalSearchSpec& spec,
   task.first = spec.first();
   task.last = spec.last();
   task.poses = poses;
-  if (spec.has_loop()) {
-    const proto::LoopClosureRecord& loop = spec.loop();
-    if (loop.relative_size() != 3 || !(loop.earlier() < loop.later()) || loop.later() >= n) {
-      throw Error("global search task: the loop does not fit its poses");
-    }
-    task.loop = LoopConstraint{loop.earlier(), loop.later(),
-                               Pose2(loop.relative(0), loop.relative(1), loop.relative(2))};
-  }
+  if (spec.has_loop())
+    task.loop = LoopClosureFromProto(spec.loop(), n, "global search task").constraint;
   task.max_error = Triple(spec.max_error(), Eigen::Vector3d::Zero(), "max_error");
   return task;
 }

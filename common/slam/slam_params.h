@@ -1,6 +1,7 @@
 #ifndef EVOSLAM_COMMON_SLAM_SLAM_PARAMS_H_
 #define EVOSLAM_COMMON_SLAM_SLAM_PARAMS_H_
 
+#include <string>
 #include <vector>
 
 #include "common/slam/rss_slam.h"
@@ -13,6 +14,12 @@ namespace evoslam {
 RssSlamParams RssSlamParamsFromProto(const proto::SlamParams& params);
 // The same parameters with every field set to what the run uses.
 proto::SlamParams CompleteSlamParams(const proto::SlamParams& params);
+
+// A loop on the wire, and back; the way back throws Error when the loop does not lie within
+// scans [0, scans) or lacks its three relative values. `what` names the message it came in.
+proto::LoopClosureRecord ToProto(const LoopClosure& loop);
+LoopClosure LoopClosureFromProto(const proto::LoopClosureRecord& record, std::size_t scans,
+                                 const std::string& what);
 
 // A global search task on the wire: the stretch, the poses and the loop.
 proto::GlobalSearchSpec ToProto(const GlobalSearchTask& task);
