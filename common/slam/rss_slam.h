@@ -37,7 +37,7 @@ struct RssSlamParams {
   double loop_bound_scale = 1.5;
   // A correction may make the map's eq. 6 score worse by at most this fraction (closing a loop
   // may blur a little); among those allowed, 002's choice: the loop closed best.
-  double sharpness_tolerance = 0.02;
+  double sharpness_tolerance = 0.005;
   std::size_t generations = 100;  // 002
   std::size_t islands = 2;        // each runs 002's (mu+lambda) preset
   std::string preset = "mu+lambda-002";
