@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <memory>
 #include <span>
+#include <tuple>
 #include <vector>
 
 #include "common/engine/presets.h"
@@ -17,6 +18,7 @@
 #include "common/slam/global_search_problem.h"
 #include "common/slam/local_search.h"
 #include "common/slam/rss_slam.h"
+#include "common/slam/slam_testing.h"
 
 namespace evoslam {
 namespace {
@@ -79,16 +81,8 @@ Loop DriveALoop() {
   sim.max_scans = 300;
   Loop loop;
   loop.log = Simulate(BuiltinWorld("office-cluster"), sim);
-  const auto& scans = loop.log.scans;
-  for (std::size_t j = 40; j < scans.size() && loop.later == 0; ++j) {
-    for (std::size_t i = 0; i + 40 <= j; ++i) {
-      if ((scans[i].true_pose->translation() - scans[j].true_pose->translation()).norm() < 0.3) {
-        loop.earlier = i;
-        loop.later = j;
-        break;
-      }
-    }
-  }
+  const auto revisit = testing::FirstRevisit(loop.log, 40, 0.3);
+  if (revisit) std::tie(loop.earlier, loop.later) = *revisit;
   EXPECT_GT(loop.later, 0u) << "the route never comes back to a place it passed";
   return loop;
 }

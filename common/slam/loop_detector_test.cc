@@ -2,10 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <tuple>
 #include <vector>
 
 #include "common/sim/simulator.h"
 #include "common/sim/world.h"
+#include "common/slam/slam_testing.h"
 #include "common/util/error.h"
 
 namespace evoslam {
@@ -26,15 +28,8 @@ Revisit DriveBack() {
   Revisit r;
   r.log = Simulate(BuiltinWorld("office-cluster"), sim);
   for (const LaserScan& s : r.log.scans) r.truth.push_back(*s.true_pose);
-  for (std::size_t j = 100; j < r.truth.size() && r.later == 0; ++j) {
-    for (std::size_t i = 0; i + 100 <= j; ++i) {
-      if ((r.truth[i].translation() - r.truth[j].translation()).norm() < 0.3) {
-        r.earlier = i;
-        r.later = j;
-        break;
-      }
-    }
-  }
+  const auto revisit = testing::FirstRevisit(r.log, 100, 0.3);
+  if (revisit) std::tie(r.earlier, r.later) = *revisit;
   EXPECT_GT(r.later, 0u) << "the route never comes back";
   return r;
 }

@@ -6,10 +6,13 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cstddef>
+#include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "common/grid/hit_count_grid.h"
+#include "common/sensor/dataset.h"
 
 namespace evoslam::testing {
 
@@ -32,6 +35,22 @@ inline CountedInsertion CountAsWritten(const HitCountGrid& map,
   r.cells.erase(std::unique(r.cells.begin(), r.cells.end()), r.cells.end());
   for (const std::size_t c : r.cells) r.fresh += map.count(c) == 0;
   return r;
+}
+
+// The first place a simulated drive comes back to: (earlier, later) scans whose true poses lie
+// within `radius` of each other, at least `min_gap` scans apart, `later` as small as can be.
+inline std::optional<std::pair<std::size_t, std::size_t>> FirstRevisit(const Dataset& drive,
+                                                                       std::size_t min_gap,
+                                                                       double radius) {
+  const auto& scans = drive.scans;
+  for (std::size_t j = min_gap; j < scans.size(); ++j) {
+    for (std::size_t i = 0; i + min_gap <= j; ++i) {
+      if ((scans[i].true_pose->translation() - scans[j].true_pose->translation()).norm() < radius) {
+        return std::pair{i, j};
+      }
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace evoslam::testing
