@@ -110,7 +110,7 @@ TEST(GlobalSearchAccuracyTest, ClosingALoopWithThe002SearchUndoesTheDrift) {
   ea->Initialize(problem, rng);
   Advance(problem, *ea, tracker, rng);
   const Population& pop = ea->population();
-  const std::size_t best = PickGlobalSolution(pop.f);
+  const std::size_t best = PickGlobalSolution(pop.f).value();
   const std::vector<Pose2> corrected = problem.Apply(pop.x.col(static_cast<Eigen::Index>(best)));
 
   const double before = Ate(odometry, loop.log), after = Ate(corrected, loop.log);

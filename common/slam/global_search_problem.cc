@@ -5,7 +5,6 @@
 #include <limits>
 #include <string>
 
-#include "common/optim/pareto.h"
 #include "common/util/error.h"
 
 namespace evoslam {
@@ -156,14 +155,19 @@ void GlobalSearchProblem::Evaluate(const Eigen::Ref<const Eigen::MatrixXd>& cand
   }
 }
 
-std::size_t PickGlobalSolution(const Eigen::MatrixXd& fitness) {
-  const std::vector<std::size_t> front = FirstFront(fitness);
-  if (front.empty()) throw Error("global search: an empty population has no solution");
-  return *std::min_element(front.begin(), front.end(), [&](std::size_t a, std::size_t b) {
-    const auto ia = static_cast<Eigen::Index>(a), ib = static_cast<Eigen::Index>(b);
-    return fitness(1, ia) != fitness(1, ib) ? fitness(1, ia) < fitness(1, ib)
-                                            : fitness(0, ia) < fitness(0, ib);
-  });
+std::optional<std::size_t> PickGlobalSolution(const Eigen::MatrixXd& fitness, double max_first) {
+  // The lowest second objective, ties going to the lower first, lies on the first front: nothing
+  // can dominate it.
+  std::optional<std::size_t> best;
+  for (Eigen::Index i = 0; i < fitness.cols(); ++i) {
+    if (!(fitness(0, i) <= max_first)) continue;
+    const auto b = static_cast<Eigen::Index>(best.value_or(0));
+    if (!best || fitness(1, i) < fitness(1, b) ||
+        (fitness(1, i) == fitness(1, b) && fitness(0, i) < fitness(0, b))) {
+      best = static_cast<std::size_t>(i);
+    }
+  }
+  return best;
 }
 
 }  // namespace evoslam

@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <span>
 #include <vector>
@@ -88,10 +89,12 @@ class GlobalSearchProblem : public Problem {
   Eigen::VectorXd lower_, upper_;
 };
 
-// The global search's choice among a final population (objectives x n): the individual of the
-// first Pareto front with the lowest second objective (the loop closed, the path free), ties
-// going to the better first.
-std::size_t PickGlobalSolution(const Eigen::MatrixXd& fitness);
+// The global search's choice among a final population (objectives x n): 002's, the individual of
+// the first Pareto front with the lowest second objective (the loop closed, the path free), ties
+// going to the better first; only individuals whose first objective is at most `max_first`
+// compete. None when no individual does.
+std::optional<std::size_t> PickGlobalSolution(
+    const Eigen::MatrixXd& fitness, double max_first = std::numeric_limits<double>::infinity());
 
 }  // namespace evoslam
 

@@ -169,3 +169,27 @@ TEST(GlobalSearchProblemTest, ScoresRandomCandidatesToTheBitAsTheEquationsAreWri
 
 }  // namespace
 }  // namespace evoslam
+
+namespace evoslam {
+namespace {
+
+TEST(PickGlobalSolutionTest, LowestSecondObjectiveOfTheFirstFrontWithinTheBound) {
+  Eigen::MatrixXd f(2, 5);
+  // Columns: (map score, loop and path score), both minimised.
+  f << -30, -29, -25, -31, -29,  //
+      0.50, 0.10, 0.00, 0.80, 0.10;
+  EXPECT_EQ(PickGlobalSolution(f), 2u);  // the loop closed best
+  // Within 2 % of -30 only columns 0 and 3 compete.
+  EXPECT_EQ(PickGlobalSolution(f, -30 + 0.6), 0u);
+  f(0, 4) = -29.5;  // now 4 competes too, and closes the loop better
+  EXPECT_EQ(PickGlobalSolution(f, -30 + 0.6), 4u);
+  f(0, 1) = -29.5;  // 1 and 4 tie on both: the first wins
+  EXPECT_EQ(PickGlobalSolution(f, -30 + 0.6), 1u);
+  f(0, 4) = -29.8;  // the sharper of a tie on the second wins
+  EXPECT_EQ(PickGlobalSolution(f, -30 + 0.6), 4u);
+  EXPECT_EQ(PickGlobalSolution(f, -40), std::nullopt);
+  EXPECT_EQ(PickGlobalSolution(Eigen::MatrixXd(2, 0)), std::nullopt);
+}
+
+}  // namespace
+}  // namespace evoslam

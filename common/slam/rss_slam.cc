@@ -27,23 +27,6 @@ std::size_t StretchStart(const RssSlamParams& params, const RssSlamState& state,
   return first;
 }
 
-// 002's choice (the first front's member closest to closing the loop, ties going to the sharper
-// map) among the members whose map is at least as sharp as `max_f1` allows.
-std::optional<std::size_t> PickWithin(const Eigen::MatrixXd& f, double max_f1) {
-  std::optional<std::size_t> best;
-  for (std::size_t i = 0; i < static_cast<std::size_t>(f.cols()); ++i) {
-    const auto c = static_cast<Eigen::Index>(i);
-    if (f(0, c) > max_f1) continue;
-    if (!best) {
-      best = i;
-      continue;
-    }
-    const auto b = static_cast<Eigen::Index>(*best);
-    if (f(1, c) < f(1, b) || (f(1, c) == f(1, b) && f(0, c) < f(0, b))) best = i;
-  }
-  return best;
-}
-
 }  // namespace
 
 std::size_t ScansToMap(const Dataset& dataset, const RssSlamParams& params) {
@@ -155,7 +138,7 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
     record.loop = loop;
     record.evaluations = islands.evaluations();
     problem.Evaluate(problem.Identity(), record.before);
-    const std::optional<std::size_t> pick = PickWithin(
+    const std::optional<std::size_t> pick = PickGlobalSolution(
         all.f, record.before[0] + params.sharpness_tolerance * std::abs(record.before[0]));
     // Keep a correction that costs the map at most the tolerance in sharpness and that leaving
     // the stretch alone does not match on both objectives.
