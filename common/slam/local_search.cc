@@ -8,12 +8,26 @@
 #include "common/util/random.h"
 
 namespace evoslam {
+namespace {
+
+// Whether a correction lies within 5 % of the cube's face on some axis, where the step's error
+// may lie beyond the cube.
+bool OnFace(const Eigen::VectorXd& error, const Eigen::Vector3d& max_error) {
+  constexpr double kFace = 0.95;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (max_error(axis) > 0.0 && std::abs(error(axis)) >= kFace * max_error(axis)) return true;
+  }
+  return false;
+}
+
+}  // namespace
 
 void ValidateLocalSearchParams(const LocalSearchParams& p) {
   if (!(p.max_error.array() >= 0.0).all() || !p.max_error.allFinite())
     throw Error("local search: the maximum step error must be finite and not negative");
   if (p.particles < 2) throw Error("local search: at least 2 particles are needed");
   if (p.iterations == 0) throw Error("local search: at least 1 iteration is needed");
+  if (p.recentres > 100) throw Error("local search: at most 100 recentred searches per step");
   if (!(p.resolution > 0.0)) throw Error("local search: the map resolution must be positive");
   if (!(p.margin >= 0.0)) throw Error("local search: the map margin must not be negative");
 }
@@ -45,10 +59,20 @@ StepCorrection CorrectStep(const HitCountGrid& map, const LaserScan& scan, const
   pso.c2 = params.c2;
   StopCriteria stop;
   stop.max_generations = params.iterations;
-  const StepCorrectionProblem problem(map, scan, predicted, params.max_error, params.fitness);
-  ParticleSwarm swarm(pso);
-  const OptimResult r = Minimize(problem, swarm, stop, rng);
-  return {problem.Corrected(r.best), r.evaluations};
+  StepCorrection result{predicted, 0};
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t round = 0; round <= params.recentres; ++round) {
+    const StepCorrectionProblem problem(map, scan, result.pose, params.max_error, params.fitness);
+    ParticleSwarm swarm(pso);
+    Rng stream = round == 0 ? rng : rng.Stream(round);
+    const OptimResult r = Minimize(problem, swarm, stop, stream);
+    result.evaluations += r.evaluations;
+    if (!(r.best_fitness < best)) break;  // the recentred cube found nothing better
+    best = r.best_fitness;
+    result.pose = problem.Corrected(r.best);
+    if (!OnFace(r.best, params.max_error)) break;
+  }
+  return result;
 }
 
 LocalSearchResult RunLocalSearch(const Dataset& dataset, const LocalSearchParams& params,

@@ -27,6 +27,10 @@ struct LocalSearchParams {
   double inertia = 0.7;
   double c1 = 2.0, c2 = 2.0;  // 002
   double resolution = 0.05;   // map cell, m
+  // When the best correction lies on the cube's face, the step's error may lie beyond it: the
+  // search runs again on a cube centred there, at most this many times, and a rerun is kept only
+  // when it fits better.
+  std::size_t recentres = 2;
   // The map covers the odometry's path plus the laser's range plus this margin, so that drift
   // the search corrects stays on it.
   double margin = 10.0;
