@@ -2,6 +2,7 @@
 // "accuracy": long under the sanitizers, so their pass leaves them out).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <span>
@@ -129,22 +130,47 @@ TEST(RssSlamAccuracyTest, MapsTheOfficeClusterFromDriftingOdometry) {
   sim.noise.odometry.rotation_bias = 0.02;
   sim.max_scans = 1000;
   const Dataset d = Simulate(BuiltinWorld("office-cluster"), sim);
+  ASSERT_TRUE(testing::FirstRevisit(d, 100, 0.5)) << "the drive must come back to a place";
   std::vector<StampedPose> odometry;
   for (const LaserScan& s : d.scans) odometry.push_back({s.timestamp, s.odometry});
   RssSlamParams params;
   params.generations = 30;
+  params.global_every = 300;  // the searches run even where no loop is found
   const RssSlamResult slam = RunRssSlam(d, params, 1);
   params.global_search = false;
   const RssSlamResult local = RunRssSlam(d, params, 1);
 
   const double odometry_ate = Ate(odometry, d), local_ate = Ate(local.trajectory, d),
                slam_ate = Ate(slam.trajectory, d);
-  EXPECT_GE(slam.loops.size(), 2u);
+  EXPECT_GE(slam.global_searches.size(), 3u);
   EXPECT_LT(slam_ate, odometry_ate / 3) << "odometry " << odometry_ate << " m, SLAM " << slam_ate;
-  // The goal is a third of the local search's error; the global searches do not reach
-  // it (docs/rss_slam.md says why). They must at least not undo what the local search did:
-  // 0.020 m local, 0.021 m with them when this was written.
+  // The goal is a third of the local search's error; here the local search leaves about
+  // one 5 cm cell, which neither eq. 1 nor eq. 6 can see below (docs/rss_slam.md). The global
+  // searches must at least not undo it: 0.021 m local, 0.021 m with them when this was written.
   EXPECT_LT(slam_ate, 1.2 * local_ate) << "local " << local_ate << " m, SLAM " << slam_ate;
+}
+
+// With a 4 m laser the office cluster's hallway and look-alike offices match well in many
+// places, and the local search drifts enough for revisits not to fit. Without the distinctness
+// test, loops 0.4 to 1.8 m from the truth got through here; with it, what gets through is a
+// match blurred along a corridor, not another place (docs/rss_slam.md).
+TEST(LoopDetectionAccuracyTest, NoLoopFoundOnAnAmbiguousDriveIsAnotherPlace) {
+  SimulationOptions sim;
+  sim.laser.beams = 181;
+  sim.laser.max_range = 4.0;
+  sim.noise.odometry.rotation_bias = 0.02;
+  const Dataset d = Simulate(BuiltinWorld("office-cluster"), sim);
+  RssSlamParams params;
+  params.generations = 10;
+  const RssSlamResult slam = RunRssSlam(d, params, 1);
+  EXPECT_GE(slam.loops.size(), 2u);
+  for (const LoopClosure& loop : slam.loops) {
+    const LoopConstraint& c = loop.constraint;
+    const Pose2 truth = d.scans[c.earlier].true_pose->inverse() * *d.scans[c.later].true_pose;
+    const Pose2 error = truth.inverse() * c.relative;
+    EXPECT_LT(error.translation().norm(), 0.35) << "loop " << c.later << " back to " << c.earlier;
+    EXPECT_LT(std::abs(error.theta()), 0.03) << "loop " << c.later << " back to " << c.earlier;
+  }
 }
 
 // The first 3,000 scans of the Intel lab's raw log (of 13,631; docs/accuracy.md has the whole

@@ -66,7 +66,7 @@ RssSlamResult ResultAtTruth(const Dataset& log, const Eigen::Vector2d& offset = 
     r.map.AddScan(s, pose);
   }
   const LoopConstraint loop{2, 25, r.trajectory[2].pose.inverse() * r.trajectory[25].pose};
-  r.loops.push_back({loop, 0.8});
+  r.loops.push_back({loop, 0.8, 0.15});
   GlobalSearchRecord search{.first = 2, .last = 26, .loop = r.loops.front()};
   search.applied = true;
   search.evaluations = 700;
@@ -229,6 +229,7 @@ TEST_F(SlamOutputsTest, ReportJsonHoldsTheRunAndItsErrors) {
   EXPECT_DOUBLE_EQ(r.loops(0).relative(1), relative.y());
   EXPECT_DOUBLE_EQ(r.loops(0).relative(2), relative.theta());
   EXPECT_DOUBLE_EQ(r.loops(0).score(), 0.8);
+  EXPECT_DOUBLE_EQ(r.loops(0).distinctness(), 0.15);
   ASSERT_EQ(r.global_searches_size(), 1);
   const auto& g = r.global_searches(0);
   EXPECT_EQ(g.first(), 2u);
@@ -302,7 +303,7 @@ TEST_F(SlamOutputsTest, SummarySaysWhatRanWhatItFoundAndHowWell) {
            "time 1.88 s: local search 1.00 s, loop detection 0.25 s, global search 0.50 s "
            "(16.00 scans/s, 2 threads)",
            "fitness evaluations: 9000 local, 700 global",
-           "loops found: 1 (scan 25 back to 2, score 0.80)",
+           "loops found: 1 (scan 25 back to 2, score 0.80, distinctness 0.15)",
            "global searches: 1, 1 applied",
            "RMS error vs ground truth: x 0.00 cm, y 0.00 cm, heading 0.00 deg (max 0.00 cm)",
            "relative error (ground truth, consecutive scans, 29 relations): 0.0000 +- 0.0000 m",

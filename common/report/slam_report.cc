@@ -102,7 +102,8 @@ void PrintLoops(std::ostream& s, const proto::SlamReport& r) {
   s << "  loops found: " << r.loops_size();
   const char* separator = " (scan ";
   for (const auto& loop : r.loops()) {
-    s << separator << loop.later() << " back to " << loop.earlier() << ", score " << loop.score();
+    s << separator << loop.later() << " back to " << loop.earlier() << ", score " << loop.score()
+      << ", distinctness " << loop.distinctness();
     separator = "; scan ";
   }
   s << (r.loops().empty() ? "\n" : ")\n");

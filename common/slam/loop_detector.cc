@@ -25,6 +25,10 @@ void ValidateLoopDetectionParams(const LoopDetectionParams& p) {
     throw Error("loop detection: the match window must be positive");
   if (!(p.min_score > 0.0 && p.min_score <= 1.0))
     throw Error("loop detection: the match score threshold must be in (0, 1]");
+  if (!(p.min_distinctness >= 0.0 && p.min_distinctness <= 1.0))
+    throw Error("loop detection: the distinctness threshold must be in [0, 1]");
+  if (!(p.rival_distance > 0.0 && p.rival_distance < p.match_window))
+    throw Error("loop detection: the rival distance must be positive and within the match window");
   if (!(p.fit_tolerance >= 0.0) || !(p.fit_tolerance_theta >= 0.0))
     throw Error("loop detection: the fit tolerances must not be negative");
 }
@@ -64,9 +68,11 @@ std::optional<LoopClosure> DetectLoop(std::span<const LaserScan> scans,
   const PlaceMatcher place(scans.subspan(lo, hi - lo), poses.subspan(lo, hi - lo), kFieldResolution,
                            kFieldSigma, params.match_window);
   const std::vector<Eigen::Vector2d> points = ReturnPoints(scans[current]);
-  const PlaceMatcher::Match match =
-      place.Search(points, poses[current], params.match_window, params.match_window_theta);
-  if (match.score < params.min_score) return std::nullopt;
+  const PlaceMatcher::Match match = place.Search(points, poses[current], params.match_window,
+                                                 params.match_window_theta, params.rival_distance);
+  if (match.score < params.min_score || match.distinctness < params.min_distinctness) {
+    return std::nullopt;
+  }
 
   // Does the scan fit where the trajectory puts it?
   const Pose2 shift = poses[current].inverse() * match.pose;
@@ -74,7 +80,8 @@ std::optional<LoopClosure> DetectLoop(std::span<const LaserScan> scans,
       std::abs(shift.theta()) <= params.fit_tolerance_theta) {
     return std::nullopt;
   }
-  return LoopClosure{{*earlier, current, poses[*earlier].inverse() * match.pose}, match.score};
+  return LoopClosure{
+      {*earlier, current, poses[*earlier].inverse() * match.pose}, match.score, match.distinctness};
 }
 
 }  // namespace evoslam

@@ -27,6 +27,10 @@ struct LoopDetectionParams {
   // The match is trusted when this fraction of the scan's returns land near the place's
   // obstacles (the likelihood score's mean, 0 to 1)...
   double min_score = 0.8;
+  // ...and it stands out: its score exceeds the best at least rival_distance away by at least
+  // min_distinctness (docs/rss_slam.md)...
+  double min_distinctness = 0.05;
+  double rival_distance = 0.3;  // m
   // ...and the scan does not fit where the trajectory puts it when the match moves it further
   // than this.
   double fit_tolerance = 0.1;         // m
@@ -43,7 +47,8 @@ void ValidateLoopDetectionParams(const LoopDetectionParams& params);
 // A place seen twice, found by matching.
 struct LoopClosure {
   LoopConstraint constraint;
-  double score = 0.0;  // the match's likelihood score, 0 to 1
+  double score = 0.0;         // the match's likelihood score, 0 to 1
+  double distinctness = 0.0;  // how far the match stands out (PlaceMatcher::Match)
 };
 
 // Checks scan `current` (its pose poses[current]) against the places the trajectory passed

@@ -76,12 +76,15 @@ double PlaceMatcher::Score(std::span<const Eigen::Vector2d> points, const Pose2&
 
 PlaceMatcher::Match PlaceMatcher::Lattice(std::span<const Eigen::Vector2d> points,
                                           const Pose2& center, double step, int half_steps,
-                                          double step_theta, int half_steps_theta,
-                                          int stride) const {
+                                          double step_theta, int half_steps_theta, int stride,
+                                          double rival_distance) const {
   std::vector<Eigen::Vector2d> used;
   for (std::size_t i = 0; i < points.size(); i += static_cast<std::size_t>(stride)) {
     used.push_back(points[i]);
   }
+  // The best score per translation over all headings, for the rivals.
+  const int side = 2 * half_steps + 1;
+  std::vector<double> best_at(static_cast<std::size_t>(side * side), -1.0);
   Match best{center, -1.0};
   for (int t = -half_steps_theta; t <= half_steps_theta; ++t) {
     const double theta = center.theta() + t * step_theta;
@@ -90,23 +93,39 @@ PlaceMatcher::Match PlaceMatcher::Lattice(std::span<const Eigen::Vector2d> point
         const Pose2 pose(center.x() + ix * step, center.y() + iy * step, theta);
         const double score = Score(used, pose);
         if (score > best.score) best = {pose, score};
+        double& at = best_at[static_cast<std::size_t>((iy + half_steps) * side + ix + half_steps)];
+        at = std::max(at, score);
       }
     }
+  }
+  if (rival_distance > 0.0) {
+    double rival = 0.0;
+    for (int iy = -half_steps; iy <= half_steps; ++iy) {
+      for (int ix = -half_steps; ix <= half_steps; ++ix) {
+        const Eigen::Vector2d at(center.x() + ix * step, center.y() + iy * step);
+        if ((at - best.pose.translation()).norm() < rival_distance) continue;
+        rival = std::max(
+            rival, best_at[static_cast<std::size_t>((iy + half_steps) * side + ix + half_steps)]);
+      }
+    }
+    best.distinctness = best.score - rival;
   }
   return best;
 }
 
 PlaceMatcher::Match PlaceMatcher::Search(std::span<const Eigen::Vector2d> points,
-                                         const Pose2& center, double window,
-                                         double window_theta) const {
+                                         const Pose2& center, double window, double window_theta,
+                                         double rival_distance) const {
   if (field_.empty() || points.empty()) return {center, 0.0};
   const double step = 2.0 * resolution_;
   const double step_theta = 0.0175;  // about 1 degree: a 5 m return moves 9 cm
   const Match coarse =
       Lattice(points, center, step, static_cast<int>(std::ceil(window / step)), step_theta,
-              static_cast<int>(std::ceil(window_theta / step_theta)), 2);
+              static_cast<int>(std::ceil(window_theta / step_theta)), 2, rival_distance);
   const Match fine = Lattice(points, coarse.pose, step / 4, 4, step_theta / 4, 4, 1);
-  return Lattice(points, fine.pose, step / 16, 4, step_theta / 16, 4, 1);
+  Match result = Lattice(points, fine.pose, step / 16, 4, step_theta / 16, 4, 1);
+  result.distinctness = coarse.distinctness;
+  return result;
 }
 
 }  // namespace evoslam

@@ -26,16 +26,22 @@ class PlaceMatcher {
   struct Match {
     Pose2 pose;
     double score = 0.0;
+    // How far the best pose stands out: the coarse lattice's best score less its best score at
+    // least `rival_distance` metres away. Near 0, the place matches about as well elsewhere (a
+    // corridor along its length, two rooms alike), and the pose found cannot be trusted.
+    double distinctness = 0.0;
   };
   // The best pose within +-window (m) and +-window_theta (rad) of `center`: a coarse lattice on
   // every other point, then two finer lattices around the best on all points. Ties go to the
   // first in lattice order, so the result is deterministic.
   Match Search(std::span<const Eigen::Vector2d> points, const Pose2& center, double window,
-               double window_theta) const;
+               double window_theta, double rival_distance) const;
 
  private:
+  // The best pose of a lattice around `center`; with `rival_distance`, also its distinctness.
   Match Lattice(std::span<const Eigen::Vector2d> points, const Pose2& center, double step,
-                int half_steps, double step_theta, int half_steps_theta, int stride) const;
+                int half_steps, double step_theta, int half_steps_theta, int stride,
+                double rival_distance = 0.0) const;
 
   double resolution_;
   Eigen::Vector2d origin_;

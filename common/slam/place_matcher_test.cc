@@ -33,14 +33,35 @@ TEST(PlaceMatcherTest, FindsAScanOfThePlaceFromAFarGuess) {
   const Pose2 truth = *scan.true_pose;
   const std::vector<Eigen::Vector2d> points = ReturnPoints(scan);
   const Pose2 guess = truth * Pose2(0.6, -0.4, 0.2);
-  const PlaceMatcher::Match m = place.Search(points, guess, 1.0, 0.3);
+  const PlaceMatcher::Match m = place.Search(points, guess, 1.0, 0.3, 0.3);
   EXPECT_LT((m.pose.translation() - truth.translation()).norm(), 0.03);
   EXPECT_LT(std::abs(WrapAngle(m.pose.theta() - truth.theta())), 0.01);
   EXPECT_GT(m.score, 0.8);
   EXPECT_LT(place.Score(points, guess), 0.5 * m.score);
+  // The office's furniture pins the pose down: nowhere 0.3 m away matches nearly as well.
+  EXPECT_GT(m.distinctness, 0.2);
   // Outside the window it cannot be found.
-  const PlaceMatcher::Match narrow = place.Search(points, guess, 0.2, 0.05);
+  const PlaceMatcher::Match narrow = place.Search(points, guess, 0.2, 0.05, 0.1);
   EXPECT_GT((narrow.pose.translation() - truth.translation()).norm(), 0.2);
+}
+
+// A corridor with nothing but its two long walls in the laser's reach matches as well anywhere
+// along it: the best pose is no better than its rivals, which a loop detector must not trust.
+TEST(PlaceMatcherTest, AFeaturelessCorridorIsNotDistinct) {
+  const World corridor = WorldFromLineMap(LineMap({{{0, 0}, {40, 0}}, {{0, 2}, {40, 2}}}),
+                                          "corridor", {{2, 1}, {38, 1}});
+  SimulationOptions sim;
+  sim.laser.max_range = 4.0;
+  sim.max_scans = 60;
+  const Dataset d = Simulate(corridor, sim);
+  std::vector<Pose2> poses;
+  for (const LaserScan& s : d.scans) poses.push_back(*s.true_pose);
+  const PlaceMatcher place(d.scans, poses, 0.05, 0.1, 1.0);
+  const LaserScan& scan = d.scans[30];
+  const PlaceMatcher::Match m =
+      place.Search(ReturnPoints(scan), *scan.true_pose * Pose2(0.5, 0.1, 0.05), 1.0, 0.3, 0.3);
+  EXPECT_GT(m.score, 0.8);          // it fits...
+  EXPECT_LT(m.distinctness, 0.02);  // ...but as well 0.3 m or more along the corridor
 }
 
 TEST(PlaceMatcherTest, ScoresAreMeanLikelihoods) {

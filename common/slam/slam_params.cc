@@ -68,6 +68,8 @@ RssSlamParams RssSlamParamsFromProto(const proto::SlamParams& p) {
   if (p.has_place_scans()) d.place_scans = p.place_scans();
   if (p.has_cooldown_scans()) d.cooldown = p.cooldown_scans();
   if (p.has_check_interval_scans()) d.check_interval = p.check_interval_scans();
+  if (p.has_min_distinctness()) d.min_distinctness = p.min_distinctness();
+  if (p.has_rival_distance_m()) d.rival_distance = p.rival_distance_m();
   ValidateRssSlamParams(r);
   return r;
 }
@@ -118,6 +120,8 @@ proto::SlamParams CompleteSlamParams(const proto::SlamParams& given) {
   p.set_place_scans(static_cast<std::uint32_t>(d.place_scans));
   p.set_cooldown_scans(static_cast<std::uint32_t>(d.cooldown));
   p.set_check_interval_scans(static_cast<std::uint32_t>(d.check_interval));
+  p.set_min_distinctness(d.min_distinctness);
+  p.set_rival_distance_m(d.rival_distance);
   return p;
 }
 
@@ -128,6 +132,7 @@ proto::LoopClosureRecord ToProto(const LoopClosure& loop) {
   const Pose2& r = loop.constraint.relative;
   for (double v : {r.x(), r.y(), r.theta()}) p.add_relative(v);
   p.set_score(loop.score);
+  p.set_distinctness(loop.distinctness);
   return p;
 }
 
@@ -138,7 +143,9 @@ LoopClosure LoopClosureFromProto(const proto::LoopClosureRecord& r, std::size_t 
                 std::to_string(r.earlier()) + " with " + std::to_string(r.relative_size()) +
                 " relative values does not fit scans [0, " + std::to_string(scans) + ")");
   }
-  return {{r.earlier(), r.later(), Pose2(r.relative(0), r.relative(1), r.relative(2))}, r.score()};
+  return {{r.earlier(), r.later(), Pose2(r.relative(0), r.relative(1), r.relative(2))},
+          r.score(),
+          r.distinctness()};
 }
 
 proto::GlobalSearchSpec ToProto(const GlobalSearchTask& task) {
@@ -151,7 +158,7 @@ proto::GlobalSearchSpec ToProto(const GlobalSearchTask& task) {
     spec.add_y(task.poses[k].y());
     spec.add_theta(task.poses[k].theta());
   }
-  if (task.loop) *spec.mutable_loop() = ToProto(LoopClosure{*task.loop, 0.0});
+  if (task.loop) *spec.mutable_loop() = ToProto(LoopClosure{*task.loop, 0.0, 0.0});
   SetTriple(spec.mutable_max_error(), task.max_error);
   return spec;
 }
