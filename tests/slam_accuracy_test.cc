@@ -146,7 +146,7 @@ TEST(RssSlamAccuracyTest, MapsTheOfficeClusterFromDriftingOdometry) {
   EXPECT_LT(slam_ate, odometry_ate / 3) << "odometry " << odometry_ate << " m, SLAM " << slam_ate;
   // The goal is a third of the local search's error; here the local search leaves about
   // one 5 cm cell, which neither eq. 1 nor eq. 6 can see below (docs/rss_slam.md). The global
-  // searches must at least not undo it: 0.021 m local, 0.021 m with them when this was written.
+  // searches must at least not undo it: 0.022 m local, 0.022 m with them when this was written.
   EXPECT_LT(slam_ate, 1.2 * local_ate) << "local " << local_ate << " m, SLAM " << slam_ate;
 }
 

@@ -25,8 +25,8 @@ struct RssSlamParams {
   LocalSearchParams local;
   GlobalSearchParams global;
   LoopDetectionParams loops;
-  bool global_search = true;       // false: local search alone
-  std::size_t global_every = 300;  // k; 0: only on a detected loop
+  bool global_search = true;     // false: local search alone
+  std::size_t global_every = 0;  // k; 0: only on a detected loop (docs/rss_slam.md)
   // A global search covers at most this many steps back (0: all since the last one).
   std::size_t max_stretch = 300;
   // A search's bounds on each partition's error (m, m, rad). A loop's search may correct up to
