@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "common/engine/engine_proto.h"
 #include "common/report/slam_report.h"
 #include "common/util/error.h"
 
@@ -62,6 +63,8 @@ proto::SlamCheckpoint ToProto(const RssSlamState& state) {
   c.set_last_global(state.last_global);
   c.set_last_loop(state.last_loop);
   *c.mutable_times() = ToProto(state.times);
+  if (state.search) *c.mutable_search() = ToProto(*state.search);
+  c.set_search_on_loop(state.search_on_loop);
   return c;
 }
 
@@ -98,6 +101,9 @@ RssSlamState RssSlamStateFromProto(const proto::SlamCheckpoint& c) {
                  .detection = t.detection_s(),
                  .global = t.global_s(),
                  .total = t.total_s()};
+  // RunRssSlam refuses a part-way search that no scan or loop of the state started.
+  if (c.has_search()) state.search = FromProto(c.search());
+  state.search_on_loop = c.search_on_loop();
   return state;
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "common/engine/archipelago.h"
 #include "common/util/error.h"
 
 namespace evoslam {
@@ -18,7 +19,7 @@ RssSlamState PartWay() {
   state.next_scan = 4;
   state.poses = {Pose2(0.1, -0.2, 3.0), Pose2(1.0 / 3, 2.0, -3.1), Pose2(2.0 / 7, 1e-9, 0.5),
                  Pose2(-4.25, 5.5, 1.0 / 9)};
-  state.loops = {{{0, 3, Pose2(0.01, -0.02, 0.003)}, 0.875}};
+  state.loops = {{{0, 3, Pose2(0.01, -0.02, 0.003)}, 0.875, 0.0625}};
   state.global_searches = {{.first = 0,
                             .last = 2,
                             .loop = std::nullopt,
@@ -54,6 +55,7 @@ void ExpectSameLoop(const LoopClosure& a, const LoopClosure& b) {
   EXPECT_EQ(a.constraint.later, b.constraint.later);
   ExpectSamePose(a.constraint.relative, b.constraint.relative);
   EXPECT_EQ(a.score, b.score);
+  EXPECT_EQ(a.distinctness, b.distinctness);
 }
 
 TEST(SlamCheckpointTest, RoundTripsEveryPoseLoopSearchAndCounter) {
@@ -90,6 +92,28 @@ TEST(SlamCheckpointTest, RoundTripsEveryPoseLoopSearchAndCounter) {
   EXPECT_EQ(back.times.detection, 0.125);
   EXPECT_EQ(back.times.global, 1.0 / 3);
   EXPECT_EQ(back.times.total, 2.0);
+  EXPECT_FALSE(back.search.has_value());
+}
+
+// The loop's global search after its first epoch: its islands come back as they were.
+TEST(SlamCheckpointTest, ASearchPartWayRoundTrips) {
+  RssSlamState state = PartWay();
+  state.global_searches.pop_back();
+  StopCriteria stop;
+  stop.max_generations = 100;
+  ArchipelagoCheckpoint islands =
+      Archipelago(GlobalIslandModel(RssSlamParams{}), stop, 77).Checkpoint();
+  islands.epoch = 1;
+  state.search = islands;
+  state.search_on_loop = true;
+  const RssSlamState back = RssSlamStateFromProto(ToProto(state));
+  ASSERT_TRUE(back.search.has_value());
+  EXPECT_TRUE(back.search_on_loop);
+  EXPECT_EQ(back.search->seed, 77u);
+  EXPECT_EQ(back.search->epoch, 1u);
+  EXPECT_EQ(back.search->islands.size(), islands.islands.size());
+  EXPECT_EQ(back.search->stop.max_generations, 100u);
+  EXPECT_EQ(back.global_searches.size(), 1u);
 }
 
 TEST(SlamCheckpointTest, TheStartOfARunRoundTrips) {

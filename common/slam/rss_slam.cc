@@ -27,6 +27,20 @@ std::size_t StretchStart(const RssSlamParams& params, const RssSlamState& state,
   return first;
 }
 
+// The islands of a global search part-way, as a checkpoint holds them; refused when their
+// candidates do not fit the search's problem.
+Archipelago ResumedIslands(const ArchipelagoCheckpoint& checkpoint, std::size_t dimension) {
+  Archipelago islands = Archipelago::FromCheckpoint(checkpoint);
+  for (const Island& island : islands.islands()) {
+    const auto rows = static_cast<std::size_t>(island.algorithm().population().x.rows());
+    if (rows != dimension && rows != 0) {
+      throw Error("SLAM: the checkpoint's global search has candidates of " + std::to_string(rows) +
+                  " genes, the search " + std::to_string(dimension));
+    }
+  }
+  return islands;
+}
+
 }  // namespace
 
 std::size_t ScansToMap(const Dataset& dataset, const RssSlamParams& params) {
@@ -97,10 +111,22 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
                 " poses, next scan " + std::to_string(state.next_scan) + ", " + std::to_string(n) +
                 " scans)");
   }
+  const bool search_fits =
+      !state.search ||
+      (state.next_scan > 0 &&
+       (!state.search_on_loop ||
+        (!state.loops.empty() && state.loops.back().constraint.later + 1 == state.next_scan)));
+  if (!search_fits) {
+    throw Error(
+        "SLAM: the checkpoint's part-way global search was started by no scan or loop it "
+        "holds (next scan " +
+        std::to_string(state.next_scan) + ", " + std::to_string(state.loops.size()) + " loops)");
+  }
   const double resumed_total = state.times.total;
   HitCountGrid map = BaseMapFor(dataset, state.poses, 0, 0, params.local);
   state.poses.reserve(n);
 
+  // Runs the global search scan `current` starts, or finishes the one state.search holds.
   const auto global_search = [&](std::size_t current, const std::optional<LoopClosure>& loop) {
     const auto start = std::chrono::steady_clock::now();
     GlobalSearchTask task;
@@ -117,12 +143,18 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
     const GlobalSearchProblem problem = MakeGlobalSearchProblem(dataset, task, params, base);
     StopCriteria stop;
     stop.max_generations = params.generations;
-    Archipelago islands(GlobalIslandModel(params), stop, root.Stream(n + task.index).NextU64());
     const IslandStepper step =
         runtime.global ? runtime.global(task, problem) : LocalIslandStepper(problem);
-    islands.Start(step);
+    Archipelago islands = state.search ? ResumedIslands(*state.search, problem.dimension())
+                                       : Archipelago(GlobalIslandModel(params), stop,
+                                                     root.Stream(n + task.index).NextU64());
+    if (!state.search) islands.Start(step);
+    state.search_on_loop = loop.has_value();
     if (runtime.progress) runtime.progress("global search", 0, params.generations);
     while (!islands.RunEpoch(step)) {
+      state.search = islands.Checkpoint();
+      state.times.total = resumed_total + SecondsSince(run_start);
+      if (runtime.checkpoint) runtime.checkpoint(state);
       if (runtime.progress) {
         runtime.progress("global search",
                          std::min(params.generations,
@@ -130,6 +162,8 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
                          params.generations);
       }
     }
+    state.search.reset();
+    state.search_on_loop = false;
     const Population all = islands.Merged();
 
     GlobalSearchRecord record;
@@ -162,6 +196,20 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
     state.last_global = current + 1;
   };
 
+  // The checkpoint first, so that progress never runs ahead of what a resume would start from.
+  const auto scan_done = [&](std::size_t i) {
+    state.times.total = resumed_total + SecondsSince(run_start);
+    if (runtime.checkpoint) runtime.checkpoint(state);
+    if (runtime.progress) runtime.progress("local search", i + 1, n);
+  };
+  if (state.search) {
+    const std::size_t current = state.next_scan - 1;
+    std::optional<LoopClosure> loop;
+    if (state.search_on_loop) loop = state.loops.back();
+    global_search(current, loop);
+    scan_done(current);
+  }
+
   for (std::size_t i = state.next_scan; i < n; ++i) {
     const LaserScan& scan = dataset.scans[i];
     auto start = std::chrono::steady_clock::now();
@@ -175,6 +223,7 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
     }
     map.AddScan(scan, pose);
     state.poses.push_back(pose);
+    state.next_scan = i + 1;
     state.times.local += SecondsSince(start);
 
     if (params.global_search) {
@@ -193,11 +242,7 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
           params.global_every > 0 && i + 1 - state.last_global >= params.global_every;
       if (loop || periodic) global_search(i, loop);
     }
-    state.next_scan = i + 1;
-    state.times.total = resumed_total + SecondsSince(run_start);
-    // The checkpoint first, so that progress never runs ahead of what a resume would start from.
-    if (runtime.checkpoint) runtime.checkpoint(state);
-    if (runtime.progress) runtime.progress("local search", i + 1, n);
+    scan_done(i);
   }
 
   RssSlamResult result{.trajectory = {},

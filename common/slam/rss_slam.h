@@ -78,6 +78,10 @@ struct RssSlamState {
   std::size_t last_global = 0;  // the first scan the next global search covers
   std::size_t last_loop = 0;    // the scan of the last detected loop (cooldown)
   SlamPhaseTimes times;
+  // The global search scan next_scan - 1 started, part-way (its islands after an epoch), and
+  // whether the last loop started it: a resume finishes it before the next scan.
+  std::optional<ArchipelagoCheckpoint> search;
+  bool search_on_loop = false;
 };
 
 struct RssSlamResult {
@@ -108,7 +112,8 @@ struct RssSlamRuntime {
   // The stepper of a global search's islands; empty: local threads.
   std::function<IslandStepper(const GlobalSearchTask& task, const GlobalSearchProblem& problem)>
       global;
-  // After every scan (and the global search it started, if any), before its progress.
+  // After every scan (and the global search it started, if any), before its progress, and
+  // after every epoch of a global search.
   std::function<void(const RssSlamState&)> checkpoint;
   // Phase "local search" (scans done of all) and "global search" (generations of one search).
   std::function<void(const std::string& phase, std::size_t done, std::size_t total)> progress;

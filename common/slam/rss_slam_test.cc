@@ -118,15 +118,27 @@ TEST(RssSlamTest, ProblemsRebuiltFromTheWireGiveTheSameRun) {
 
 TEST(RssSlamTest, ResumingFromAnyCheckpointGivesTheUninterruptedRun) {
   const Dataset d = Drive(60);
-  const RssSlamParams params = Quick();
-  std::vector<RssSlamState> states;
+  RssSlamParams params = Quick();
+  params.generations = 25;       // three epochs of 10: checkpoints inside each search...
+  params.preset = "immune-004";  // ...which 002's (mu+lambda) ends early here, converged
+  std::vector<RssSlamState> states, part_way;
   RssSlamRuntime record;
   record.checkpoint = [&](const RssSlamState& s) {
-    if (s.next_scan == 26 || s.next_scan == 40) states.push_back(s);
+    if (s.search) {
+      part_way.push_back(s);
+    } else if (s.next_scan == 26 || s.next_scan == 40) {
+      states.push_back(s);
+    }
   };
   const RssSlamResult whole = RunRssSlam(d, params, 3, record);
   ASSERT_EQ(states.size(), 2u);
   EXPECT_EQ(states[0].global_searches.size(), 1u);  // just after the first global search
+  // Two searches, each checkpointed after its first two epochs.
+  ASSERT_EQ(part_way.size(), 4u);
+  EXPECT_EQ(part_way[0].next_scan, 25u);  // the 25th scan started it
+  EXPECT_TRUE(part_way[0].global_searches.empty());
+  EXPECT_EQ(part_way[1].search->epoch, part_way[0].search->epoch + 1);
+  states.insert(states.end(), part_way.begin(), part_way.end());
   for (const RssSlamState& state : states) {
     RssSlamRuntime resume;
     resume.resume = &state;
@@ -136,6 +148,10 @@ TEST(RssSlamTest, ResumingFromAnyCheckpointGivesTheUninterruptedRun) {
   broken.poses.pop_back();
   RssSlamRuntime bad;
   bad.resume = &broken;
+  EXPECT_THROW(RunRssSlam(d, params, 3, bad), Error);
+  // A part-way search said to be a loop's, with no loop at its scan.
+  broken = part_way[0];
+  broken.search_on_loop = true;
   EXPECT_THROW(RunRssSlam(d, params, 3, bad), Error);
 }
 
