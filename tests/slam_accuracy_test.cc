@@ -152,7 +152,7 @@ TEST(RssSlamAccuracyTest, MapsTheOfficeClusterFromDriftingOdometry) {
 
 // With a 4 m laser the office cluster's hallway and look-alike offices match well in many
 // places, and the local search drifts enough for revisits not to fit. Without the distinctness
-// test, loops 0.4 to 1.8 m from the truth got through here; with it, what gets through is a
+// test, loops 0.6 to 0.9 m from the truth got through here; with it, what gets through is a
 // match blurred along a corridor, not another place (docs/rss_slam.md).
 TEST(LoopDetectionAccuracyTest, NoLoopFoundOnAnAmbiguousDriveIsAnotherPlace) {
   SimulationOptions sim;
