@@ -83,8 +83,9 @@ PlaceMatcher::Match PlaceMatcher::Lattice(std::span<const Eigen::Vector2d> point
     used.push_back(points[i]);
   }
   // The best score per translation over all headings, for the rivals.
+  const bool rivals = rival_distance > 0.0;
   const int side = 2 * half_steps + 1;
-  std::vector<double> best_at(static_cast<std::size_t>(side * side), -1.0);
+  std::vector<double> best_at(rivals ? static_cast<std::size_t>(side * side) : 0, -1.0);
   Match best{center, -1.0};
   for (int t = -half_steps_theta; t <= half_steps_theta; ++t) {
     const double theta = center.theta() + t * step_theta;
@@ -93,12 +94,15 @@ PlaceMatcher::Match PlaceMatcher::Lattice(std::span<const Eigen::Vector2d> point
         const Pose2 pose(center.x() + ix * step, center.y() + iy * step, theta);
         const double score = Score(used, pose);
         if (score > best.score) best = {pose, score};
-        double& at = best_at[static_cast<std::size_t>((iy + half_steps) * side + ix + half_steps)];
-        at = std::max(at, score);
+        if (rivals) {
+          double& at =
+              best_at[static_cast<std::size_t>((iy + half_steps) * side + ix + half_steps)];
+          at = std::max(at, score);
+        }
       }
     }
   }
-  if (rival_distance > 0.0) {
+  if (rivals) {
     double rival = 0.0;
     for (int iy = -half_steps; iy <= half_steps; ++iy) {
       for (int ix = -half_steps; ix <= half_steps; ++ix) {
