@@ -123,6 +123,12 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
         std::to_string(state.next_scan) + ", " + std::to_string(state.loops.size()) + " loops)");
   }
   const double resumed_total = state.times.total;
+  // Hands the state as it stands to the runtime, its total time brought up to date.
+  const auto checkpoint = [&] {
+    if (!runtime.checkpoint) return;
+    state.times.total = resumed_total + SecondsSince(run_start);
+    runtime.checkpoint(state);
+  };
   HitCountGrid map = BaseMapFor(dataset, state.poses, 0, 0, params.local);
   state.poses.reserve(n);
 
@@ -152,9 +158,10 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
     state.search_on_loop = loop.has_value();
     if (runtime.progress) runtime.progress("global search", 0, params.generations);
     while (!islands.RunEpoch(step)) {
-      state.search = islands.Checkpoint();
-      state.times.total = resumed_total + SecondsSince(run_start);
-      if (runtime.checkpoint) runtime.checkpoint(state);
+      if (runtime.checkpoint) {
+        state.search = islands.Checkpoint();
+        checkpoint();
+      }
       if (runtime.progress) {
         runtime.progress("global search",
                          std::min(params.generations,
@@ -198,8 +205,7 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
 
   // The checkpoint first, so that progress never runs ahead of what a resume would start from.
   const auto scan_done = [&](std::size_t i) {
-    state.times.total = resumed_total + SecondsSince(run_start);
-    if (runtime.checkpoint) runtime.checkpoint(state);
+    checkpoint();
     if (runtime.progress) runtime.progress("local search", i + 1, n);
   };
   if (state.search) {

@@ -67,8 +67,8 @@ struct SlamPhaseTimes {
   double local = 0.0, detection = 0.0, global = 0.0, total = 0.0;  // s
 };
 
-// A SLAM run between two scans: enough to resume it elsewhere with the same result (the map is
-// rebuilt from the poses).
+// A SLAM run between two scans or two epochs of a global search: enough to resume it elsewhere
+// with the same result (the map is rebuilt from the poses).
 struct RssSlamState {
   std::size_t next_scan = 0;
   std::vector<Pose2> poses;  // scans [0, next_scan)
