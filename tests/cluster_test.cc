@@ -1150,6 +1150,9 @@ class SlamJobTest : public ServiceTest {
     p.set_partitions(4);
     p.set_global_every(static_cast<std::uint32_t>(Scans(100)));
     p.set_check_interval_scans(1);  // the drive's one revisit lasts a few scans
+    // Ten times 002's PSO iterations: the local search then lasts about a second, a window wide
+    // enough for a test to catch the job part-way between its polls.
+    p.set_local_iterations(300);
     // A local search of one cube per step leaves the revisit off the map, and its match, not
     // distinct enough to be trusted in a real run, is let through: here it only has to start a
     // loop's search, whose tasks the service must run as RunRssSlam does.
