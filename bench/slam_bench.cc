@@ -11,6 +11,8 @@
 #include "common/io/carmen_reader.h"
 #include "common/slam/global_search_problem.h"
 #include "common/slam/local_search.h"
+#include "common/slam/loop_detector.h"
+#include "common/slam/place_matcher.h"
 #include "common/slam/rss_slam.h"
 #include "common/slam/step_correction_problem.h"
 #include "common/util/random.h"
@@ -89,6 +91,26 @@ void BM_StepCorrectionEvaluate(benchmark::State& state) {
   TimeEvaluate(state, problem, RandomBatch(problem, kCandidates, 1));
 }
 BENCHMARK(BM_StepCorrectionEvaluate)->Arg(1)->Arg(2)->UseRealTime();
+
+// One match of loop detection, with its default window: scan 25 of the Intel log, put 0.3 m and
+// 0.1 rad off, against the place of scans [0, 51) at their odometry poses.
+void BM_PlaceMatcherSearch(benchmark::State& state) {
+  const Dataset* log = IntelOrSkip(state);
+  if (!log) return;
+  constexpr std::size_t kPlace = 51, kScan = 25;
+  const LoopDetectionParams params;
+  std::vector<Pose2> poses;
+  for (std::size_t i = 0; i < kPlace; ++i) poses.push_back(log->scans[i].odometry);
+  const PlaceMatcher place(std::span(log->scans).first(kPlace), poses, 0.05, 0.1,
+                           params.match_window);
+  const std::vector<Eigen::Vector2d> points = ReturnPoints(log->scans[kScan]);
+  const Pose2 start = poses[kScan] * Pose2(0.3, -0.2, 0.1);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(place.Search(points, start, params.match_window,
+                                          params.match_window_theta, params.rival_distance));
+  }
+}
+BENCHMARK(BM_PlaceMatcherSearch)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 // The local search over the first 2000 scans of the Intel log, on OMP_NUM_THREADS threads.
 void BM_LocalSearchIntel(benchmark::State& state) {

@@ -74,6 +74,50 @@ double PlaceMatcher::Score(std::span<const Eigen::Vector2d> points, const Pose2&
   return sum / static_cast<double>(points.size());
 }
 
+void PlaceMatcher::ScoreTranslations(std::span<const Eigen::Vector2d> points, const Pose2& center,
+                                     double theta, double step, int half_steps,
+                                     std::vector<double>& scores) const {
+  const int side = 2 * half_steps + 1;
+  scores.assign(static_cast<std::size_t>(side) * static_cast<std::size_t>(side), 0.0);
+  const double cells_per_step = step / resolution_;
+  const auto k = static_cast<int>(std::lround(cells_per_step));
+  if (k < 1 || std::abs(cells_per_step - k) > 1e-9) {
+    for (int iy = -half_steps; iy <= half_steps; ++iy) {
+      for (int ix = -half_steps; ix <= half_steps; ++ix) {
+        scores[static_cast<std::size_t>((iy + half_steps) * side + ix + half_steps)] =
+            Score(points, Pose2(center.x() + ix * step, center.y() + iy * step, theta));
+      }
+    }
+    return;
+  }
+  // A step of k whole cells moves every point by k cells: each point's cell is found once per
+  // heading, and each translation costs it one load. This is where loop detection spends its time.
+  if (points.empty()) return;
+  const auto floor_div = [](int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); };
+  const double c = std::cos(theta), s = std::sin(theta);
+  const double inv = 1.0 / resolution_;
+  for (const Eigen::Vector2d& p : points) {
+    const double fx = std::floor((center.x() + c * p.x() - s * p.y() - origin_.x()) * inv);
+    const double fy = std::floor((center.y() + s * p.x() + c * p.y() - origin_.y()) * inv);
+    // Too far off the field for any translation to bring it in (and safe to convert).
+    const double reach = static_cast<double>(k) * half_steps;
+    if (fx < -reach || fy < -reach || fx >= width_ + reach || fy >= height_ + reach) continue;
+    const int x = static_cast<int>(fx), y = static_cast<int>(fy);
+    const int ix_lo = std::max(-half_steps, -floor_div(x, k));
+    const int ix_hi = std::min(half_steps, floor_div(width_ - 1 - x, k));
+    for (int iy = -half_steps; iy <= half_steps; ++iy) {
+      const int row = y + k * iy;
+      if (row < 0 || row >= height_) continue;
+      const float* cells =
+          &field_[static_cast<std::size_t>(row) * static_cast<std::size_t>(width_)];
+      double* out = &scores[static_cast<std::size_t>((iy + half_steps) * side + half_steps)];
+      for (int ix = ix_lo; ix <= ix_hi; ++ix) out[ix] += cells[x + k * ix];
+    }
+  }
+  const double n = static_cast<double>(points.size());
+  for (double& score : scores) score /= n;
+}
+
 PlaceMatcher::Match PlaceMatcher::Lattice(std::span<const Eigen::Vector2d> points,
                                           const Pose2& center, double step, int half_steps,
                                           double step_theta, int half_steps_theta, int stride,
@@ -86,19 +130,19 @@ PlaceMatcher::Match PlaceMatcher::Lattice(std::span<const Eigen::Vector2d> point
   const bool rivals = rival_distance > 0.0;
   const int side = 2 * half_steps + 1;
   std::vector<double> best_at(rivals ? static_cast<std::size_t>(side * side) : 0, -1.0);
+  std::vector<double> scores;
   Match best{center, -1.0};
   for (int t = -half_steps_theta; t <= half_steps_theta; ++t) {
     const double theta = center.theta() + t * step_theta;
+    ScoreTranslations(used, center, theta, step, half_steps, scores);
     for (int iy = -half_steps; iy <= half_steps; ++iy) {
       for (int ix = -half_steps; ix <= half_steps; ++ix) {
-        const Pose2 pose(center.x() + ix * step, center.y() + iy * step, theta);
-        const double score = Score(used, pose);
-        if (score > best.score) best = {pose, score};
-        if (rivals) {
-          double& at =
-              best_at[static_cast<std::size_t>((iy + half_steps) * side + ix + half_steps)];
-          at = std::max(at, score);
+        const auto at = static_cast<std::size_t>((iy + half_steps) * side + ix + half_steps);
+        const double score = scores[at];
+        if (score > best.score) {
+          best = {Pose2(center.x() + ix * step, center.y() + iy * step, theta), score};
         }
+        if (rivals) best_at[at] = std::max(best_at[at], score);
       }
     }
   }

@@ -43,6 +43,11 @@ class PlaceMatcher {
                 int half_steps, double step_theta, int half_steps_theta, int stride,
                 double rival_distance = 0.0) const;
 
+  // The mean score of every translation of a (2 half_steps + 1)^2 lattice around `center` at
+  // heading `theta`, row by row from the lowest y.
+  void ScoreTranslations(std::span<const Eigen::Vector2d> points, const Pose2& center, double theta,
+                         double step, int half_steps, std::vector<double>& scores) const;
+
   double resolution_;
   Eigen::Vector2d origin_;
   int width_ = 0, height_ = 0;
