@@ -60,6 +60,22 @@ TEST(HitCountGridTest, TheRunningSumsAgreeWithAFullCountAfterRandomChanges) {
   EXPECT_EQ(part.total, part_total);
 }
 
+TEST(HitCountGridTest, ACellIsOccupiedExactlyWhileItsCountIsAboveZero) {
+  HitCountGrid grid(0.5, Eigen::Vector2d::Zero(), 40, 6);  // 240 cells: several words of bits
+  std::mt19937 gen(3);
+  std::uniform_real_distribution<double> x(0.0, 20.0), y(0.0, 3.0);
+  std::uniform_int_distribution<int> delta(-3, 2);
+  for (int i = 0; i < 3000; ++i) {
+    const Eigen::Vector2d point(x(gen), y(gen));
+    grid.Add(point, delta(gen));
+    const std::size_t cell = *grid.CellIndex(point);
+    ASSERT_EQ(grid.occupied(cell), grid.count(cell) > 0) << "after change " << i;
+  }
+  for (std::size_t cell = 0; cell < 240; ++cell) {
+    EXPECT_EQ(grid.occupied(cell), grid.count(cell) > 0) << "cell " << cell;
+  }
+}
+
 TEST(HitCountGridTest, AScanAddsItsReturnsWhereTheyEndAndTakesThemBackExactly) {
   HitCountGrid grid(0.05, Eigen::Vector2d(-5.0, -5.0), 200, 200);
   LaserScan scan;

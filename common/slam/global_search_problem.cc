@@ -127,7 +127,7 @@ void GlobalSearchProblem::Score(const Eigen::Ref<const Eigen::VectorXd>& x, Scra
   double conflicts = 0.0;
   for (const Pose2& pose : poses) {
     const auto c = base_.CellIndex(pose.translation());
-    if (c) conflicts += base_.count(*c) > 0 || cells.Contains(*c);
+    if (c) conflicts += base_.occupied(*c) || cells.Contains(*c);
   }
   double distance = 0.0;
   if (loop_) {
