@@ -94,8 +94,12 @@ void PrintSearches(std::ostream& s, const proto::SlamParams& p) {
   }
   s << (p.global_every() > 0 ? "on a loop or every " + std::to_string(p.global_every()) + " steps"
                              : std::string("on a loop"))
-    << ", " << p.partitions() << " partitions, " << p.islands() << " islands of " << p.preset()
-    << " x " << p.generations() << " generations\n";
+    << ", " << p.partitions() << " partitions, "
+    << (p.global_beam_stride() > 1
+            ? "1 return in " + std::to_string(p.global_beam_stride()) + " scored"
+            : std::string("all returns scored"))
+    << ", " << p.islands() << " islands of " << p.preset() << " x " << p.generations()
+    << " generations\n";
 }
 
 void PrintLoops(std::ostream& s, const proto::SlamReport& r) {

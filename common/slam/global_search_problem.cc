@@ -21,6 +21,7 @@ void ValidateGlobalSearchParams(const GlobalSearchParams& p) {
   if (!(p.sigma.array() > 0.0).all() || !p.sigma.allFinite())
     throw Error("global search: the Gaussian widths must be positive");
   if (!(p.w1 >= 0.0) || !(p.w2 >= 0.0)) throw Error("global search: weights must be >= 0");
+  if (p.beam_stride == 0) throw Error("global search: the beam stride must be >= 1");
 }
 
 GlobalSearchProblem::GlobalSearchProblem(std::span<const LaserScan> scans,
@@ -45,7 +46,11 @@ GlobalSearchProblem::GlobalSearchProblem(std::span<const LaserScan> scans,
   const std::size_t steps = increments_.size();
   const std::size_t partitions = std::max<std::size_t>(1, std::min(params.partitions, steps));
   for (std::size_t i = 0; i <= partitions; ++i) bounds_.push_back(i * steps / partitions);
-  for (std::size_t k = first; k < last; ++k) returns_.push_back(ReturnPoints(scans[k]));
+  for (std::size_t k = first; k < last; ++k) {
+    const std::vector<Eigen::Vector2d> all = ReturnPoints(scans[k]);
+    std::vector<Eigen::Vector2d>& used = returns_.emplace_back();
+    for (std::size_t i = 0; i < all.size(); i += params.beam_stride) used.push_back(all[i]);
+  }
   if (loop && loop->earlier < first) loop_earlier_pose_ = poses[loop->earlier];
   const auto n = static_cast<Eigen::Index>(partitions * kGenesPerColumn);
   lower_.resize(n);

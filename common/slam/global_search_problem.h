@@ -24,6 +24,9 @@ struct GlobalSearchParams {
   Eigen::Vector3d sigma{0.3, 0.3, 0.3};
   double w1 = 0.5;  // eq. 7: weight of path cells on obstacles (002 Fig. 11: 0.5)
   double w2 = 0.5;  // eq. 7: weight of the distance between two observations of one place
+  // Eq. 6 counts every this-many-th return of each scan of the stretch. Neighbouring scans see
+  // the same walls, so half the returns still draw them; half the cost (docs/rss_slam.md).
+  std::size_t beam_stride = 2;
 };
 
 void ValidateGlobalSearchParams(const GlobalSearchParams& params);
@@ -40,8 +43,9 @@ struct LoopConstraint {
 // a Gaussian (genes: L columns of (dx, mu_x, dy, mu_y, dtheta, mu_theta)), the error being spread
 // over the partition's steps with the Gaussian's weights (eq. 5, normalised so that a
 // partition's error is its total). Two objectives, both minimised: eq. 6 negated (the mean
-// number of observations per occupied cell of the whole map, the scans of [first, last)
-// re-inserted at their corrected poses into `base`, which holds every other scan), and eq. 7
+// number of observations per occupied cell of the whole map, every beam_stride-th return of the
+// scans of [first, last) re-inserted at their corrected poses into `base`, which holds every
+// other scan), and eq. 7
 // negated (w1 x the corrected poses that stand on an occupied cell + w2 x how far the loop's
 // later pose lands from where the constraint puts it; no constraint, no second term).
 class GlobalSearchProblem : public Problem {

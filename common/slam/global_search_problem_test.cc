@@ -83,8 +83,9 @@ Scored ScoreAsWritten(std::span<const LaserScan> scans, std::span<const Pose2> p
   }
   std::vector<Eigen::Vector2d> points;
   for (std::size_t k = 0; k < r.poses.size(); ++k) {
-    for (const Eigen::Vector2d& p : ReturnPoints(scans[first + k])) {
-      points.push_back(r.poses[k] * p);
+    const std::vector<Eigen::Vector2d> returns = ReturnPoints(scans[first + k]);
+    for (std::size_t i = 0; i < returns.size(); i += params.beam_stride) {
+      points.push_back(r.poses[k] * returns[i]);
     }
   }
   const testing::CountedInsertion added = testing::CountAsWritten(base, points);
@@ -126,16 +127,18 @@ TEST(GlobalSearchProblemTest, ScoresRandomCandidatesToTheBitAsTheEquationsAreWri
   struct Case {
     std::size_t first, last;
     LoopConstraint loop;
+    std::size_t beam_stride;
   };
-  for (const Case& c : {Case{0, 40, {5, 35, odometry[5].inverse() * odometry[35] * nudge}},
-                        Case{30, 70, {10, 60, odometry[10].inverse() * odometry[60] * nudge}},
-                        Case{30, 70, {40, 65, odometry[40].inverse() * odometry[65] * nudge}}}) {
+  for (const Case& c : {Case{0, 40, {5, 35, odometry[5].inverse() * odometry[35] * nudge}, 1},
+                        Case{30, 70, {10, 60, odometry[10].inverse() * odometry[60] * nudge}, 2},
+                        Case{30, 70, {40, 65, odometry[40].inverse() * odometry[65] * nudge}, 3}}) {
     HitCountGrid others = base;
     for (std::size_t i = 0; i < log.scans.size(); ++i) {
       if (i < c.first || i >= c.last) others.AddScan(log.scans[i], odometry[i]);
     }
     GlobalSearchParams params;
     params.partitions = 6;
+    params.beam_stride = c.beam_stride;
     const GlobalSearchProblem problem(log.scans, std::span(odometry).first(c.last), c.first, c.last,
                                       others, params, c.loop);
     Rng rng(c.first + c.loop.earlier);

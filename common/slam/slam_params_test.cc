@@ -40,6 +40,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   p.set_global_every(0);  // only on loops
   p.set_w2(0.0);
   p.set_partitions(5);
+  p.set_global_beam_stride(1);
   p.set_local_fitness("eval2");
   p.set_local_only(true);
   for (double v : {0.2, 0.3, 0.04}) p.add_local_max_error(v);
@@ -48,6 +49,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   EXPECT_EQ(r.global_every, 0u);
   EXPECT_EQ(r.global.w2, 0.0);
   EXPECT_EQ(r.global.partitions, 5u);
+  EXPECT_EQ(r.global.beam_stride, 1u);
   EXPECT_EQ(r.local.fitness, LocalFitness::kEval2);
   EXPECT_FALSE(r.global_search);
   EXPECT_EQ(r.local.max_error, Eigen::Vector3d(0.2, 0.3, 0.04));
@@ -74,6 +76,9 @@ TEST(SlamParamsTest, BadFieldsAreNamed) {
   p = {};
   p.set_min_match_score(2.0);
   EXPECT_NE(ErrorOf(p).find("score"), std::string::npos);
+  p = {};
+  p.set_global_beam_stride(0);
+  EXPECT_NE(ErrorOf(p).find("beam stride"), std::string::npos);
   p = {};
   p.set_preset("nope");
   EXPECT_NE(ErrorOf(p).find("nope"), std::string::npos);
