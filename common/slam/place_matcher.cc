@@ -90,8 +90,8 @@ void PlaceMatcher::ScoreTranslations(std::span<const Eigen::Vector2d> points, co
     }
     return;
   }
-  // A step of k whole cells moves every point by k cells: each point's cell is found once per
-  // heading, and each translation costs it one load. This is where loop detection spends its time.
+  // A step of k whole cells moves every point by k cells, so each translation costs a point one
+  // load: this is where loop detection spends its time.
   if (points.empty()) return;
   const auto floor_div = [](int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); };
   const double c = std::cos(theta), s = std::sin(theta);

@@ -23,6 +23,12 @@ class PlaceMatcher {
   // The mean likelihood of `points` (laser frame) seen from `pose`, 0 to 1.
   double Score(std::span<const Eigen::Vector2d> points, const Pose2& pose) const;
 
+  // Score at every translation of a (2 half_steps + 1)^2 lattice of `step` metres around
+  // `center`, at heading `theta`, into `scores` row by row from the lowest y. A step of a whole
+  // number of cells takes a shortcut: each point's cell is found once, not once a translation.
+  void ScoreTranslations(std::span<const Eigen::Vector2d> points, const Pose2& center, double theta,
+                         double step, int half_steps, std::vector<double>& scores) const;
+
   struct Match {
     Pose2 pose;
     double score = 0.0;
@@ -42,11 +48,6 @@ class PlaceMatcher {
   Match Lattice(std::span<const Eigen::Vector2d> points, const Pose2& center, double step,
                 int half_steps, double step_theta, int half_steps_theta, int stride,
                 double rival_distance = 0.0) const;
-
-  // The mean score of every translation of a (2 half_steps + 1)^2 lattice around `center` at
-  // heading `theta`, row by row from the lowest y.
-  void ScoreTranslations(std::span<const Eigen::Vector2d> points, const Pose2& center, double theta,
-                         double step, int half_steps, std::vector<double>& scores) const;
 
   double resolution_;
   Eigen::Vector2d origin_;

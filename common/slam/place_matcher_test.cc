@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <span>
 #include <vector>
 
 #include "common/sim/simulator.h"
@@ -74,6 +76,36 @@ TEST(PlaceMatcherTest, ScoresAreMeanLikelihoods) {
   EXPECT_EQ(place.Score({}, *d.scans[5].true_pose), 0.0);
   // Far from the place no return lands near an obstacle.
   EXPECT_EQ(place.Score(points, Pose2(500, 500, 0)), 0.0);
+}
+
+TEST(PlaceMatcherTest, ALatticeOfWholeCellStepsScoresAsEachPoseWould) {
+  const Dataset d = Drive();
+  // A place of one scan with a narrow margin: many points of a scan taken further on fall off
+  // its field, at every translation of the lattice (the sanitizers watch those reads).
+  const PlaceMatcher place(std::span(d.scans).first(1), std::vector<Pose2>{*d.scans[0].true_pose},
+                           0.05, 0.1, 0.2);
+  const std::vector<Eigen::Vector2d> points = ReturnPoints(d.scans[15]);
+  const Pose2 center = *d.scans[15].true_pose * Pose2(0.13, -0.07, 0.0);
+  constexpr int kHalf = 12;
+  std::vector<double> scores;
+  // 2 cells (the shortcut), 1 cell, and 0.75 cells (scored pose by pose).
+  for (const double step : {0.1, 0.05, 0.0375}) {
+    for (const double theta : {-2.0, center.theta(), 3.1}) {
+      place.ScoreTranslations(points, center, theta, step, kHalf, scores);
+      ASSERT_EQ(scores.size(), static_cast<std::size_t>((2 * kHalf + 1) * (2 * kHalf + 1)));
+      for (int iy = -kHalf; iy <= kHalf; ++iy) {
+        for (int ix = -kHalf; ix <= kHalf; ++ix) {
+          const Pose2 pose(center.x() + ix * step, center.y() + iy * step, theta);
+          EXPECT_NEAR(scores[static_cast<std::size_t>((iy + kHalf) * (2 * kHalf + 1) + ix + kHalf)],
+                      place.Score(points, pose), 1e-9)
+              << "step " << step << " theta " << theta << " at " << ix << ", " << iy;
+        }
+      }
+    }
+    // At the scan's own heading the lattice reaches where the two scans overlap.
+    place.ScoreTranslations(points, center, center.theta(), step, kHalf, scores);
+    EXPECT_GT(*std::max_element(scores.begin(), scores.end()), 0.2) << "step " << step;
+  }
 }
 
 TEST(PlaceMatcherTest, RefusesMismatchedInputs) {
