@@ -25,7 +25,7 @@ struct GlobalSearchParams {
   double w1 = 0.5;  // eq. 7: weight of path cells on obstacles (002 Fig. 11: 0.5)
   double w2 = 0.5;  // eq. 7: weight of the distance between two observations of one place
   // Eq. 6 counts every this-many-th return of each scan of the stretch. Neighbouring scans see
-  // the same walls, so half the returns still draw them; half the cost (docs/rss_slam.md).
+  // the same walls, so half the returns still draw them, at 0.6 of the cost (docs/rss_slam.md).
   std::size_t beam_stride = 2;
 };
 
