@@ -1,8 +1,10 @@
 #include "common/engine/island.h"
 
 #include <chrono>
+#include <string>
 
 #include "common/optim/evolve.h"
+#include "common/util/error.h"
 
 namespace evoslam {
 
@@ -31,6 +33,13 @@ void Island::Start(const Problem& problem) {
 }
 
 std::optional<StopReason> Island::Evolve(const Problem& problem, std::size_t generations) {
+  // An island restored from a checkpoint may come from another problem: say so, before any
+  // operator reads candidates of the wrong length.
+  const auto rows = static_cast<std::size_t>(algorithm_->population().x.rows());
+  if (rows != 0 && rows != problem.dimension()) {
+    throw Error("island: a population of " + std::to_string(rows) +
+                " coordinates for a problem of " + std::to_string(problem.dimension()));
+  }
   if (!stopped_) stopped_ = Advance(problem, *algorithm_, tracker_, rng_, generations);
   return stopped_;
 }

@@ -35,7 +35,8 @@ class Island {
 
   // Draws and evaluates the first population.
   void Start(const Problem& problem);
-  // Up to `generations` generations; returns the stop reason once the island is done.
+  // Up to `generations` generations; returns the stop reason once the island is done. Throws
+  // Error when its population's candidates do not fit `problem`.
   std::optional<StopReason> Evolve(const Problem& problem, std::size_t generations);
 
   std::optional<StopReason> stopped() const { return stopped_; }

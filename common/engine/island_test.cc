@@ -9,6 +9,7 @@
 #include "common/engine/engine_proto.h"
 #include "common/engine/presets.h"
 #include "common/optim/test_problems.h"
+#include "common/util/error.h"
 
 namespace evoslam {
 namespace {
@@ -56,6 +57,22 @@ INSTANTIATE_TEST_SUITE_P(EveryPreset, ShippedIslandTest, ::testing::ValuesIn(Pre
 
 // The coordinator's scheme: every epoch the islands travel to workers as checkpoints and come
 // back; the archipelago migrates between them as it does in one process.
+TEST(IslandTest, AnIslandOfAnotherProblemIsRefusedBeforeItEvolves) {
+  StopCriteria stop;
+  stop.max_generations = 6;
+  Island island(FindPreset("de-000").algorithm, stop, Rng(3));
+  island.Start(TestFunctionProblem(TestFunction::kSphere, 3));
+  Island restored = Island::FromCheckpoint(island.Checkpoint());
+  try {
+    restored.Evolve(TestFunctionProblem(TestFunction::kSphere, 5), 2);
+    ADD_FAILURE() << "an island of 3 coordinates evolved on a problem of 5";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("3 coordinates for a problem of 5"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(restored.Evolve(TestFunctionProblem(TestFunction::kSphere, 3), 2).has_value());
+}
+
 TEST(ShippedArchipelagoTest, AnArchipelagoWhoseIslandsTravelEveryEpochMatchesOneThatStaysHome) {
   const TestFunctionProblem problem(TestFunction::kRastrigin, 6);
   IslandModelParams params;

@@ -27,20 +27,6 @@ std::size_t StretchStart(const RssSlamParams& params, const RssSlamState& state,
   return first;
 }
 
-// The islands of a global search part-way, as a checkpoint holds them; refused when their
-// candidates do not fit the search's problem.
-Archipelago ResumedIslands(const ArchipelagoCheckpoint& checkpoint, std::size_t dimension) {
-  Archipelago islands = Archipelago::FromCheckpoint(checkpoint);
-  for (const Island& island : islands.islands()) {
-    const auto rows = static_cast<std::size_t>(island.algorithm().population().x.rows());
-    if (rows != dimension && rows != 0) {
-      throw Error("SLAM: the checkpoint's global search has candidates of " + std::to_string(rows) +
-                  " genes, the search " + std::to_string(dimension));
-    }
-  }
-  return islands;
-}
-
 }  // namespace
 
 std::size_t ScansToMap(const Dataset& dataset, const RssSlamParams& params) {
@@ -151,7 +137,8 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
     stop.max_generations = params.generations;
     const IslandStepper step =
         runtime.global ? runtime.global(task, problem) : LocalIslandStepper(problem);
-    Archipelago islands = state.search ? ResumedIslands(*state.search, problem.dimension())
+    // Islands that do not fit the problem are refused by Island::Evolve.
+    Archipelago islands = state.search ? Archipelago::FromCheckpoint(*state.search)
                                        : Archipelago(GlobalIslandModel(params), stop,
                                                      root.Stream(n + task.index).NextU64());
     if (!state.search) islands.Start(step);
