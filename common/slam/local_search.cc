@@ -30,6 +30,8 @@ void ValidateLocalSearchParams(const LocalSearchParams& p) {
   if (p.recentres > 100) throw Error("local search: at most 100 recentred searches per step");
   if (!(p.resolution > 0.0)) throw Error("local search: the map resolution must be positive");
   if (!(p.margin >= 0.0)) throw Error("local search: the map margin must not be negative");
+  if (!std::isfinite(p.frontier_margin))
+    throw Error("local search: the frontier margin must be finite");
 }
 
 HitCountGrid EmptyMapFor(const Dataset& dataset, const LocalSearchParams& params) {
@@ -75,6 +77,35 @@ StepCorrection CorrectStep(const HitCountGrid& map, const LaserScan& scan, const
   return result;
 }
 
+LaserScan WithinPreviousReach(const LaserScan& scan, const Pose2& predicted,
+                              const LaserScan& previous, const Pose2& previous_pose,
+                              double margin) {
+  LaserScan scored = scan;
+  if (margin < 0.0) return scored;
+  const Pose2 relative = previous_pose.inverse() * predicted;
+  const double reach = previous.range_max - margin;
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    if (!scan.is_return(i)) continue;
+    const double r = scan.ranges[i], a = scan.angle(i);
+    const Eigen::Vector2d seen_from_previous =
+        relative * Eigen::Vector2d(r * std::cos(a), r * std::sin(a));
+    if (seen_from_previous.norm() > reach) scored.ranges[i] = static_cast<float>(scan.range_max);
+  }
+  return scored;
+}
+
+StepCorrection CorrectLogStep(const HitCountGrid& map, const Dataset& dataset, std::size_t i,
+                              const Pose2& previous_pose, const LocalSearchParams& params,
+                              Rng rng) {
+  const LaserScan& scan = dataset.scans[i];
+  const LaserScan& previous = dataset.scans[i - 1];
+  const Pose2 predicted = previous_pose * (previous.odometry.inverse() * scan.odometry);
+  if (params.frontier_margin < 0.0) return CorrectStep(map, scan, predicted, params, rng);
+  const LaserScan scored =
+      WithinPreviousReach(scan, predicted, previous, previous_pose, params.frontier_margin);
+  return CorrectStep(map, scored, predicted, params, rng);
+}
+
 LocalSearchResult RunLocalSearch(const Dataset& dataset, const LocalSearchParams& params,
                                  std::uint64_t seed, HitCountGrid& map,
                                  const std::function<void(std::size_t, std::size_t)>& progress) {
@@ -88,8 +119,7 @@ LocalSearchResult RunLocalSearch(const Dataset& dataset, const LocalSearchParams
   for (std::size_t i = 0; i < n; ++i) {
     const LaserScan& scan = dataset.scans[i];
     if (i > 0) {
-      const Pose2 step = dataset.scans[i - 1].odometry.inverse() * scan.odometry;
-      const StepCorrection c = CorrectStep(map, scan, pose * step, params, root.Stream(i));
+      const StepCorrection c = CorrectLogStep(map, dataset, i, pose, params, root.Stream(i));
       pose = c.pose;
       result.evaluations += c.evaluations;
     }

@@ -31,6 +31,12 @@ struct LocalSearchParams {
   // search runs again on a cube centred there, at most this many times, and a rerun is kept only
   // when it fits better.
   std::size_t recentres = 2;
+  // When not negative, a step is scored without the returns that lie farther than the previous
+  // scan's range minus this margin (m) from the previous pose. Those land beyond the map's edge
+  // whatever the correction, and the shorter the step the fewer new cells they occupy, so they
+  // pull every step short where the laser sees less than the place holds. Negative (the
+  // default): every return is scored, as in 002.
+  double frontier_margin = -1.0;
   // The map covers the odometry's path plus the laser's range plus this margin, so that drift
   // the search corrects stays on it.
   double margin = 10.0;
@@ -50,6 +56,17 @@ struct StepCorrection {
 };
 StepCorrection CorrectStep(const HitCountGrid& map, const LaserScan& scan, const Pose2& predicted,
                            const LocalSearchParams& params, Rng rng);
+
+// `scan` as the local search scores it at `predicted` with params.frontier_margin = `margin`:
+// the returns farther than previous.range_max - margin from `previous_pose` (where the previous
+// scan stood) read as no return; with a negative margin, `scan` unchanged.
+LaserScan WithinPreviousReach(const LaserScan& scan, const Pose2& predicted,
+                              const LaserScan& previous, const Pose2& previous_pose, double margin);
+
+// The local search's step for scan i > 0 of a log: its pose corrected from `previous_pose` (scan
+// i - 1's) moved by the odometry's step.
+StepCorrection CorrectLogStep(const HitCountGrid& map, const Dataset& dataset, std::size_t i,
+                              const Pose2& previous_pose, const LocalSearchParams& params, Rng rng);
 
 struct LocalSearchResult {
   std::vector<StampedPose> trajectory;  // one pose per scan, the laser's

@@ -3,8 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
+#include <vector>
 
 #include "common/localization/test_scenes.h"
+#include "common/mapping/line_map.h"
 #include "common/sim/simulator.h"
 #include "common/sim/world.h"
 #include "common/util/error.h"
@@ -57,6 +60,59 @@ TEST(CorrectStepTest, RecentredSearchesReachAnErrorBeyondTheCube) {
       CorrectStep(map, scan, truth * Pose2(0.03, 0.02, 0.01), params, Rng(3));
   EXPECT_EQ(near.evaluations, once.evaluations);
   EXPECT_LT(heading_error(near.pose), 0.01);
+}
+
+// Down a hall longer than the laser's reach every scan sees its walls a step farther on. The end
+// points past the previous scan's reach land off the map whatever the pose, and fewer of them do
+// the shorter the step: scored, they pull every step short.
+TEST(LocalSearchTest, DownAHallLongerThanTheLasersReachTheFrontierDoesNotPullTheStepsShort) {
+  constexpr double kHalfWidth = 2.5;
+  std::vector<Segment> walls{{{-2.0, -kHalfWidth}, {40.0, -kHalfWidth}},
+                             {{-2.0, kHalfWidth}, {40.0, kHalfWidth}}};
+  for (double x = 0.5; x < 40.0; x += 2.6) {  // door frames, so that a step is observable
+    walls.push_back({{x, -kHalfWidth}, {x, 0.1 - kHalfWidth}});
+    walls.push_back({{x + 1.3, kHalfWidth}, {x + 1.3, kHalfWidth - 0.1}});
+  }
+  const LineMap corridor(std::move(walls));
+  Dataset drive;
+  for (int i = 0; i < 100; ++i) {
+    const Pose2 pose(0.2 * i, 0.0, 0.0);
+    LaserScan scan = testing::ScanFrom(corridor, pose, 181, 4.0);
+    scan.timestamp = i;
+    scan.odometry = pose;
+    drive.scans.push_back(std::move(scan));
+  }
+  const auto shortfall = [&](double margin) {
+    LocalSearchParams params;
+    params.frontier_margin = margin;
+    HitCountGrid map = EmptyMapFor(drive, params);
+    const LocalSearchResult r = RunLocalSearch(drive, params, 1, map);
+    return drive.scans.back().odometry.x() - r.trajectory.back().pose.x();
+  };
+  // The odometry is exact, so any shortfall is the score's pull. What remains with the frontier
+  // left out comes from the wall each door frame hid from the previous scan.
+  const double all = shortfall(-1.0), within = shortfall(0.15);
+  EXPECT_GT(all, 2.0);
+  EXPECT_LT(std::abs(within), all / 3) << "every return scored: " << all << " m short";
+}
+
+TEST(WithinPreviousReachTest, DropsTheReturnsBeyondThePreviousScansReach) {
+  LaserScan scan;
+  scan.angle_min = 0.0;
+  scan.angle_increment = std::numbers::pi / 2;
+  scan.range_max = 5.0;
+  scan.ranges = {4.0, 4.5, 3.0};  // ahead, left, behind
+  LaserScan previous = scan;
+  // One metre behind along x: ahead lies 5 m away, left 4.61 m, behind 2 m.
+  const Pose2 pose(1.0, 0.0, 0.0), previous_pose(0.0, 0.0, 0.0);
+  const LaserScan scored = WithinPreviousReach(scan, pose, previous, previous_pose, 0.2);
+  EXPECT_FALSE(scored.is_return(0));
+  EXPECT_TRUE(scored.is_return(1));
+  EXPECT_TRUE(scored.is_return(2));
+  EXPECT_EQ(scored.ranges[1], scan.ranges[1]);
+  EXPECT_FALSE(WithinPreviousReach(scan, pose, previous, previous_pose, 0.5).is_return(1));
+  const LaserScan all = WithinPreviousReach(scan, pose, previous, previous_pose, -1.0);
+  EXPECT_EQ(all.ranges, scan.ranges);
 }
 
 }  // namespace

@@ -208,9 +208,8 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
     auto start = std::chrono::steady_clock::now();
     Pose2 pose = scan.odometry;
     if (i > 0) {
-      const Pose2 step = dataset.scans[i - 1].odometry.inverse() * scan.odometry;
       const StepCorrection c =
-          CorrectStep(map, scan, state.poses.back() * step, params.local, root.Stream(i));
+          CorrectLogStep(map, dataset, i, state.poses.back(), params.local, root.Stream(i));
       pose = c.pose;
       state.local_evaluations += c.evaluations;
     }

@@ -54,17 +54,25 @@ TEST(RssSlamTest, LocalOnlyIsTheLocalSearch) {
   const Dataset d = Drive(60);
   RssSlamParams params = Quick();
   params.global_search = false;
-  const RssSlamResult slam = RunRssSlam(d, params, 5);
-  HitCountGrid map = EmptyMapFor(d, params.local);
-  const LocalSearchResult local = RunLocalSearch(d, params.local, 5, map);
-  ASSERT_EQ(slam.trajectory.size(), local.trajectory.size());
-  for (std::size_t i = 0; i < local.trajectory.size(); ++i) {
-    EXPECT_EQ(slam.trajectory[i].pose.translation(), local.trajectory[i].pose.translation());
-    EXPECT_EQ(slam.trajectory[i].timestamp, d.scans[i].timestamp);
+  std::vector<Pose2> last;
+  // Both ways of scoring a step: every return, and only those within the previous scan's reach
+  // less a margin (6 m of the 8 m laser's, which must change the trajectory).
+  for (const double margin : {-1.0, 6.0}) {
+    params.local.frontier_margin = margin;
+    const RssSlamResult slam = RunRssSlam(d, params, 5);
+    HitCountGrid map = EmptyMapFor(d, params.local);
+    const LocalSearchResult local = RunLocalSearch(d, params.local, 5, map);
+    ASSERT_EQ(slam.trajectory.size(), local.trajectory.size());
+    for (std::size_t i = 0; i < local.trajectory.size(); ++i) {
+      EXPECT_EQ(slam.trajectory[i].pose.translation(), local.trajectory[i].pose.translation());
+      EXPECT_EQ(slam.trajectory[i].timestamp, d.scans[i].timestamp);
+    }
+    EXPECT_EQ(slam.local_evaluations, local.evaluations);
+    EXPECT_TRUE(slam.global_searches.empty());
+    EXPECT_EQ(slam.map.total(), map.total());
+    last.push_back(slam.trajectory.back().pose);
   }
-  EXPECT_EQ(slam.local_evaluations, local.evaluations);
-  EXPECT_TRUE(slam.global_searches.empty());
-  EXPECT_EQ(slam.map.total(), map.total());
+  EXPECT_NE(last[0].translation(), last[1].translation()) << "the margin changed nothing";
 }
 
 TEST(RssSlamTest, GlobalSearchesRunEveryKStepsOverTheStepsSinceTheLast) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   p.set_w2(0.0);
   p.set_partitions(5);
   p.set_global_beam_stride(1);
+  p.set_local_frontier_margin_m(0.15);
   p.set_local_fitness("eval2");
   p.set_local_only(true);
   for (double v : {0.2, 0.3, 0.04}) p.add_local_max_error(v);
@@ -50,6 +52,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   EXPECT_EQ(r.global.w2, 0.0);
   EXPECT_EQ(r.global.partitions, 5u);
   EXPECT_EQ(r.global.beam_stride, 1u);
+  EXPECT_EQ(r.local.frontier_margin, 0.15);
   EXPECT_EQ(r.local.fitness, LocalFitness::kEval2);
   EXPECT_FALSE(r.global_search);
   EXPECT_EQ(r.local.max_error, Eigen::Vector3d(0.2, 0.3, 0.04));
@@ -79,6 +82,9 @@ TEST(SlamParamsTest, BadFieldsAreNamed) {
   p = {};
   p.set_global_beam_stride(0);
   EXPECT_NE(ErrorOf(p).find("beam stride"), std::string::npos);
+  p = {};
+  p.set_local_frontier_margin_m(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_NE(ErrorOf(p).find("frontier margin"), std::string::npos);
   p = {};
   p.set_preset("nope");
   EXPECT_NE(ErrorOf(p).find("nope"), std::string::npos);
