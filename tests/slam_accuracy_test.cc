@@ -151,15 +151,19 @@ TEST(RssSlamAccuracyTest, MapsTheOfficeClusterFromDriftingOdometry) {
 }
 
 // With a 4 m laser the office cluster's hallway and look-alike offices match well in many
-// places, and the local search drifts enough for revisits not to fit. Without the distinctness
-// test, loops 0.6 to 0.9 m from the truth got through here; with it, what gets through is a
-// match blurred along a corridor, not another place (docs/rss_slam.md).
-TEST(LoopDetectionAccuracyTest, NoLoopFoundOnAnAmbiguousDriveIsAnotherPlace) {
+// places, and the local search drifts enough for revisits not to fit.
+Dataset AmbiguousDrive() {
   SimulationOptions sim;
   sim.laser.beams = 181;
   sim.laser.max_range = 4.0;
   sim.noise.odometry.rotation_bias = 0.02;
-  const Dataset d = Simulate(BuiltinWorld("office-cluster"), sim);
+  return Simulate(BuiltinWorld("office-cluster"), sim);
+}
+
+// Without the distinctness test, loops 0.6 to 0.9 m from the truth got through here; with it,
+// what gets through is a match blurred along a corridor, not another place (docs/rss_slam.md).
+TEST(LoopDetectionAccuracyTest, NoLoopFoundOnAnAmbiguousDriveIsAnotherPlace) {
+  const Dataset d = AmbiguousDrive();
   RssSlamParams params;
   params.generations = 10;
   const RssSlamResult slam = RunRssSlam(d, params, 1);
@@ -171,6 +175,24 @@ TEST(LoopDetectionAccuracyTest, NoLoopFoundOnAnAmbiguousDriveIsAnotherPlace) {
     EXPECT_LT(error.translation().norm(), 0.35) << "loop " << c.later << " back to " << c.earlier;
     EXPECT_LT(std::abs(error.theta()), 0.03) << "loop " << c.later << " back to " << c.earlier;
   }
+}
+
+// The same ambiguous drive's loop searches, allowed to blur the map by up to 10 %: those that do
+// are applied only when they close the loop (eq. 7) by at least half.
+TEST(RssSlamAccuracyTest, ACorrectionThatBlursTheMapIsAppliedOnlyForTheMinimumEq7Gain) {
+  const Dataset d = AmbiguousDrive();
+  RssSlamParams params;
+  params.generations = 10;
+  params.sharpness_tolerance = 0.1;
+  params.min_eq7_gain = 0.5;
+  const RssSlamResult slam = RunRssSlam(d, params, 1);
+  std::size_t refused = 0;
+  for (const GlobalSearchRecord& g : slam.global_searches) {
+    if (g.after[0] < g.before[0]) continue;  // a sharper map is always worth it
+    EXPECT_EQ(g.applied, g.after[1] < 0.5 * g.before[1]) << g.first << " to " << g.last;
+    if (!g.applied && g.after[1] < g.before[1]) ++refused;
+  }
+  EXPECT_GT(refused, 0u) << "no search was refused for too small a gain: the test shows nothing";
 }
 
 // The first 3,000 scans of the Intel lab's raw log (of 13,631; docs/accuracy.md has the whole

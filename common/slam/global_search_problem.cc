@@ -175,4 +175,9 @@ std::optional<std::size_t> PickGlobalSolution(const Eigen::MatrixXd& fitness, do
   return best;
 }
 
+bool WorthApplying(std::span<const double, 2> before, std::span<const double, 2> after,
+                   double min_eq7_gain) {
+  return after[0] < before[0] || after[1] < (1.0 - min_eq7_gain) * before[1];
+}
+
 }  // namespace evoslam

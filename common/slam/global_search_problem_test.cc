@@ -194,5 +194,18 @@ TEST(PickGlobalSolutionTest, LowestSecondObjectiveOfTheFirstFrontWithinTheBound)
   EXPECT_EQ(PickGlobalSolution(Eigen::MatrixXd(2, 0)), std::nullopt);
 }
 
+TEST(WorthApplyingTest, ABlurringCorrectionMustCloseTheLoopByTheMinimumGain) {
+  const double before[2] = {-37.34, 0.897};
+  // A seed of the Intel log: the map blurred and eq. 7 barely moved.
+  const double barely[2] = {-37.26, 0.894};
+  EXPECT_TRUE(WorthApplying(before, barely, 0.0));
+  EXPECT_FALSE(WorthApplying(before, barely, 0.1));
+  const double closed[2] = {-37.26, 0.5};
+  EXPECT_TRUE(WorthApplying(before, closed, 0.1));
+  const double sharper[2] = {-37.40, 0.897};  // a sharper map is worth it whatever eq. 7 does
+  EXPECT_TRUE(WorthApplying(before, sharper, 0.1));
+  EXPECT_FALSE(WorthApplying(before, before, 0.0));  // leaving the stretch alone is as good
+}
+
 }  // namespace
 }  // namespace evoslam

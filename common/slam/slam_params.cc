@@ -58,6 +58,7 @@ RssSlamParams RssSlamParamsFromProto(const proto::SlamParams& p) {
   r.refine_error = Triple(p.refine_error(), r.refine_error, "refine_error");
   if (p.has_loop_bound_scale()) r.loop_bound_scale = p.loop_bound_scale();
   if (p.has_sharpness_tolerance()) r.sharpness_tolerance = p.sharpness_tolerance();
+  if (p.has_min_eq7_gain()) r.min_eq7_gain = p.min_eq7_gain();
   LoopDetectionParams& d = r.loops;
   if (p.has_revisit_radius_m()) d.revisit_radius = p.revisit_radius_m();
   if (p.has_min_gap_scans()) d.min_gap = p.min_gap_scans();
@@ -112,6 +113,7 @@ proto::SlamParams CompleteSlamParams(const proto::SlamParams& given) {
   SetTriple(p.mutable_refine_error(), r.refine_error);
   p.set_loop_bound_scale(r.loop_bound_scale);
   p.set_sharpness_tolerance(r.sharpness_tolerance);
+  p.set_min_eq7_gain(r.min_eq7_gain);
   const LoopDetectionParams& d = r.loops;
   p.set_revisit_radius_m(d.revisit_radius);
   p.set_min_gap_scans(static_cast<std::uint32_t>(d.min_gap));

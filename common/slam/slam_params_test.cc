@@ -43,6 +43,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   p.set_partitions(5);
   p.set_global_beam_stride(1);
   p.set_local_frontier_margin_m(0.15);
+  p.set_min_eq7_gain(0.1);
   p.set_local_fitness("eval2");
   p.set_local_only(true);
   for (double v : {0.2, 0.3, 0.04}) p.add_local_max_error(v);
@@ -53,6 +54,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   EXPECT_EQ(r.global.partitions, 5u);
   EXPECT_EQ(r.global.beam_stride, 1u);
   EXPECT_EQ(r.local.frontier_margin, 0.15);
+  EXPECT_EQ(r.min_eq7_gain, 0.1);
   EXPECT_EQ(r.local.fitness, LocalFitness::kEval2);
   EXPECT_FALSE(r.global_search);
   EXPECT_EQ(r.local.max_error, Eigen::Vector3d(0.2, 0.3, 0.04));
@@ -85,6 +87,9 @@ TEST(SlamParamsTest, BadFieldsAreNamed) {
   p = {};
   p.set_local_frontier_margin_m(std::numeric_limits<double>::quiet_NaN());
   EXPECT_NE(ErrorOf(p).find("frontier margin"), std::string::npos);
+  p = {};
+  p.set_min_eq7_gain(1.0);
+  EXPECT_NE(ErrorOf(p).find("eq. 7 gain"), std::string::npos);
   p = {};
   p.set_preset("nope");
   EXPECT_NE(ErrorOf(p).find("nope"), std::string::npos);
