@@ -38,7 +38,7 @@ struct RssSlamParams {
   // A correction may make the map's eq. 6 score worse by at most this fraction (closing a loop
   // may blur a little); among those allowed, 002's choice: the loop closed best.
   double sharpness_tolerance = 0.005;
-  // A correction that leaves the map less sharp (eq. 6) must lower eq. 7 by at least this
+  // A correction that leaves the map less sharp (eq. 6) must lower eq. 7 by more than this
   // fraction to be applied; 0: any improvement will do. A search that barely closes its loop
   // while it blurs the map is more likely bending the path to a place it never was.
   double min_eq7_gain = 0.0;
