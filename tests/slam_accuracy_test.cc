@@ -178,7 +178,7 @@ TEST(LoopDetectionAccuracyTest, NoLoopFoundOnAnAmbiguousDriveIsAnotherPlace) {
 }
 
 // The same ambiguous drive's loop searches, allowed to blur the map by up to 10 %: those that do
-// are applied only when they close the loop (eq. 7) by at least half.
+// are applied only when they close the loop (eq. 7) by more than half.
 TEST(RssSlamAccuracyTest, ACorrectionThatBlursTheMapIsAppliedOnlyForTheMinimumEq7Gain) {
   const Dataset d = AmbiguousDrive();
   RssSlamParams params;

@@ -55,8 +55,6 @@ INSTANTIATE_TEST_SUITE_P(EveryPreset, ShippedIslandTest, ::testing::ValuesIn(Pre
                            return name;
                          });
 
-// The coordinator's scheme: every epoch the islands travel to workers as checkpoints and come
-// back; the archipelago migrates between them as it does in one process.
 TEST(IslandTest, AnIslandOfAnotherProblemIsRefusedBeforeItEvolves) {
   StopCriteria stop;
   stop.max_generations = 6;
@@ -73,6 +71,8 @@ TEST(IslandTest, AnIslandOfAnotherProblemIsRefusedBeforeItEvolves) {
   EXPECT_FALSE(restored.Evolve(TestFunctionProblem(TestFunction::kSphere, 3), 2).has_value());
 }
 
+// The coordinator's scheme: every epoch the islands travel to workers as checkpoints and come
+// back; the archipelago migrates between them as it does in one process.
 TEST(ShippedArchipelagoTest, AnArchipelagoWhoseIslandsTravelEveryEpochMatchesOneThatStaysHome) {
   const TestFunctionProblem problem(TestFunction::kRastrigin, 6);
   IslandModelParams params;
