@@ -27,10 +27,19 @@ void ValidateLoopDetectionParams(const LoopDetectionParams& p) {
     throw Error("loop detection: the match score threshold must be in (0, 1]");
   if (!(p.min_distinctness >= 0.0 && p.min_distinctness <= 1.0))
     throw Error("loop detection: the distinctness threshold must be in [0, 1]");
+  if (!(p.match_window_per_metre >= 0.0) || !std::isfinite(p.match_window_per_metre))
+    throw Error("loop detection: the window's growth per metre must be finite and not negative");
+  if (!(p.max_match_window >= p.match_window) || !std::isfinite(p.max_match_window))
+    throw Error("loop detection: the largest match window must be finite and at least the window");
   if (!(p.rival_distance > 0.0 && p.rival_distance < p.match_window))
     throw Error("loop detection: the rival distance must be positive and within the match window");
   if (!(p.fit_tolerance >= 0.0) || !(p.fit_tolerance_theta >= 0.0))
     throw Error("loop detection: the fit tolerances must not be negative");
+}
+
+double MatchWindow(const LoopDetectionParams& params, double travelled) {
+  return std::clamp(params.match_window_per_metre * travelled, params.match_window,
+                    params.max_match_window);
 }
 
 std::optional<LoopClosure> DetectLoop(std::span<const LaserScan> scans,
@@ -43,21 +52,24 @@ std::optional<LoopClosure> DetectLoop(std::span<const LaserScan> scans,
   const Eigen::Vector2d here = poses[current].translation();
 
   // The closest earlier pose within the radius, at least min_gap scans and min_travel metres
-  // back along the path.
+  // back along the path; the longer that path, the wider the radius and the window.
   const std::size_t newest = current - params.min_gap;
   double travelled = 0.0;
   for (std::size_t k = current; k > newest; --k) {
     travelled += (poses[k].translation() - poses[k - 1].translation()).norm();
   }
   std::optional<std::size_t> earlier;
-  double closest = params.revisit_radius;
+  double closest = std::numeric_limits<double>::infinity();
+  double window = params.match_window;
   for (std::size_t j = newest + 1; j-- > 0;) {
     if (j < newest) travelled += (poses[j + 1].translation() - poses[j].translation()).norm();
     if (travelled < params.min_travel) continue;
     const double d = (poses[j].translation() - here).norm();
-    if (d < closest) {
+    const double reach = MatchWindow(params, travelled);
+    if (d < closest && d < params.revisit_radius + reach - params.match_window) {
       closest = d;
       earlier = j;
+      window = reach;
     }
   }
   if (!earlier) return std::nullopt;
@@ -66,9 +78,9 @@ std::optional<LoopClosure> DetectLoop(std::span<const LaserScan> scans,
   const std::size_t lo = *earlier > params.place_scans ? *earlier - params.place_scans : 0;
   const std::size_t hi = std::min(*earlier + params.place_scans + 1, newest + 1);
   const PlaceMatcher place(scans.subspan(lo, hi - lo), poses.subspan(lo, hi - lo), kFieldResolution,
-                           kFieldSigma, params.match_window);
+                           kFieldSigma, window);
   const std::vector<Eigen::Vector2d> points = ReturnPoints(scans[current]);
-  const PlaceMatcher::Match match = place.Search(points, poses[current], params.match_window,
+  const PlaceMatcher::Match match = place.Search(points, poses[current], window,
                                                  params.match_window_theta, params.rival_distance);
   if (match.score < params.min_score || match.distinctness < params.min_distinctness) {
     return std::nullopt;

@@ -24,6 +24,11 @@ struct LoopDetectionParams {
   std::size_t place_scans = 25;
   double match_window = 1.5;         // m, half-width
   double match_window_theta = 0.35;  // rad, half-width
+  // Drift grows with the path between the two visits: the window widens to this fraction of
+  // that path, up to max_match_window, and the revisit radius grows with it. ACES's long loops
+  // come back 2 to 4 m off along its corridors (docs/rss_slam.md).
+  double match_window_per_metre = 0.02;
+  double max_match_window = 3.0;  // m
   // The match is trusted when this fraction of the scan's returns land near the place's
   // obstacles (the likelihood score's mean, 0 to 1)...
   double min_score = 0.8;
@@ -43,6 +48,10 @@ struct LoopDetectionParams {
 };
 
 void ValidateLoopDetectionParams(const LoopDetectionParams& params);
+
+// The match window's half-width (m) for a revisit `travelled` metres of path after the earlier
+// visit; the revisit radius is revisit_radius plus what this adds to match_window.
+double MatchWindow(const LoopDetectionParams& params, double travelled);
 
 // A place seen twice, found by matching.
 struct LoopClosure {

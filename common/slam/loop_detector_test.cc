@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <tuple>
 #include <vector>
 
@@ -71,6 +73,41 @@ TEST(LoopDetectorTest, RecentPosesAndFarPlacesAreNoRevisit) {
   EXPECT_FALSE(DetectLoop(r.log.scans, poses, r.later, {}).has_value());
 }
 
+TEST(LoopDetectorTest, TheWindowGrowsWithThePathBetweenTheVisitsUpToItsLargest) {
+  LoopDetectionParams params;
+  params.match_window = 1.5;
+  params.match_window_per_metre = 0.02;
+  params.max_match_window = 3.0;
+  EXPECT_EQ(MatchWindow(params, 10.0), 1.5);
+  EXPECT_DOUBLE_EQ(MatchWindow(params, 100.0), 2.0);
+  EXPECT_EQ(MatchWindow(params, 1000.0), 3.0);
+  params.match_window_per_metre = 0.0;
+  EXPECT_EQ(MatchWindow(params, 1000.0), 1.5);
+}
+
+// A revisit 2.4 m off, as on ACES after a long loop: beyond the fixed window and radius, found
+// once they grow with the path.
+TEST(LoopDetectorTest, ARevisitFarOffAfterALongPathIsFoundOnlyWithTheGrowingWindow) {
+  const Revisit r = DriveBack();
+  std::vector<Pose2> poses(r.truth.begin(), r.truth.begin() + r.later + 1);
+  const Pose2 at = poses.back();
+  poses.back() = Pose2(at.x() + 2.0, at.y() - 1.3, at.theta() + 0.05);
+  double path = 0.0;
+  for (std::size_t k = r.earlier; k < r.later; ++k) {
+    path += (r.truth[k + 1].translation() - r.truth[k].translation()).norm();
+  }
+  LoopDetectionParams params;
+  params.match_window_per_metre = 0.0;
+  EXPECT_FALSE(DetectLoop(r.log.scans, poses, r.later, params).has_value());
+  params.match_window_per_metre = params.max_match_window / path;
+  const auto loop = DetectLoop(r.log.scans, poses, r.later, params);
+  ASSERT_TRUE(loop.has_value());
+  const Pose2 truth = r.truth[loop->constraint.earlier].inverse() * r.truth[r.later];
+  const Pose2 error = truth.inverse() * loop->constraint.relative;
+  EXPECT_LT(error.translation().norm(), 0.05);
+  EXPECT_LT(std::abs(error.theta()), 0.02);  // within a degree; eq. 7 uses the translation only
+}
+
 TEST(LoopDetectorTest, RefusesBadParametersAndScansWithoutPoses) {
   const Revisit r = DriveBack();
   const std::vector<Pose2> poses(r.truth.begin(), r.truth.begin() + 10);
@@ -83,6 +120,12 @@ TEST(LoopDetectorTest, RefusesBadParametersAndScansWithoutPoses) {
   EXPECT_THROW(ValidateLoopDetectionParams(params), Error);
   params = {};
   params.min_gap = 0;
+  EXPECT_THROW(ValidateLoopDetectionParams(params), Error);
+  params = {};
+  params.match_window_per_metre = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(ValidateLoopDetectionParams(params), Error);
+  params = {};
+  params.max_match_window = params.match_window - 0.1;
   EXPECT_THROW(ValidateLoopDetectionParams(params), Error);
 }
 

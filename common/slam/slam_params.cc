@@ -65,6 +65,8 @@ RssSlamParams RssSlamParamsFromProto(const proto::SlamParams& p) {
   if (p.has_min_travel_m()) d.min_travel = p.min_travel_m();
   if (p.has_match_window_m()) d.match_window = p.match_window_m();
   if (p.has_match_window_rad()) d.match_window_theta = p.match_window_rad();
+  if (p.has_match_window_per_m()) d.match_window_per_metre = p.match_window_per_m();
+  if (p.has_max_match_window_m()) d.max_match_window = p.max_match_window_m();
   if (p.has_min_match_score()) d.min_score = p.min_match_score();
   if (p.has_fit_tolerance_m()) d.fit_tolerance = p.fit_tolerance_m();
   if (p.has_fit_tolerance_rad()) d.fit_tolerance_theta = p.fit_tolerance_rad();
@@ -120,6 +122,8 @@ proto::SlamParams CompleteSlamParams(const proto::SlamParams& given) {
   p.set_min_travel_m(d.min_travel);
   p.set_match_window_m(d.match_window);
   p.set_match_window_rad(d.match_window_theta);
+  p.set_match_window_per_m(d.match_window_per_metre);
+  p.set_max_match_window_m(d.max_match_window);
   p.set_min_match_score(d.min_score);
   p.set_fit_tolerance_m(d.fit_tolerance);
   p.set_fit_tolerance_rad(d.fit_tolerance_theta);

@@ -44,6 +44,8 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   p.set_global_beam_stride(1);
   p.set_local_frontier_margin_m(0.15);
   p.set_min_eq7_gain(0.1);
+  p.set_match_window_per_m(0.0);
+  p.set_max_match_window_m(2.5);
   p.set_local_fitness("eval2");
   p.set_local_only(true);
   for (double v : {0.2, 0.3, 0.04}) p.add_local_max_error(v);
@@ -55,6 +57,8 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   EXPECT_EQ(r.global.beam_stride, 1u);
   EXPECT_EQ(r.local.frontier_margin, 0.15);
   EXPECT_EQ(r.min_eq7_gain, 0.1);
+  EXPECT_EQ(r.loops.match_window_per_metre, 0.0);
+  EXPECT_EQ(r.loops.max_match_window, 2.5);
   EXPECT_EQ(r.local.fitness, LocalFitness::kEval2);
   EXPECT_FALSE(r.global_search);
   EXPECT_EQ(r.local.max_error, Eigen::Vector3d(0.2, 0.3, 0.04));
@@ -90,6 +94,12 @@ TEST(SlamParamsTest, BadFieldsAreNamed) {
   p = {};
   p.set_min_eq7_gain(1.0);
   EXPECT_NE(ErrorOf(p).find("eq. 7 gain"), std::string::npos);
+  p = {};
+  p.set_match_window_per_m(-0.01);
+  EXPECT_NE(ErrorOf(p).find("growth per metre"), std::string::npos);
+  p = {};
+  p.set_max_match_window_m(1.0);  // below the 1.5 m window
+  EXPECT_NE(ErrorOf(p).find("largest match window"), std::string::npos);
   p = {};
   p.set_preset("nope");
   EXPECT_NE(ErrorOf(p).find("nope"), std::string::npos);
