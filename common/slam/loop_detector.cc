@@ -38,8 +38,9 @@ void ValidateLoopDetectionParams(const LoopDetectionParams& p) {
 }
 
 double MatchWindow(const LoopDetectionParams& params, double travelled) {
-  return std::clamp(params.match_window_per_metre * travelled, params.match_window,
-                    params.max_match_window);
+  // min/max rather than std::clamp: unvalidated bounds give a window, not undefined behaviour.
+  return std::min(params.max_match_window,
+                  std::max(params.match_window, params.match_window_per_metre * travelled));
 }
 
 std::optional<LoopClosure> DetectLoop(std::span<const LaserScan> scans,
@@ -65,11 +66,11 @@ std::optional<LoopClosure> DetectLoop(std::span<const LaserScan> scans,
     if (j < newest) travelled += (poses[j + 1].translation() - poses[j].translation()).norm();
     if (travelled < params.min_travel) continue;
     const double d = (poses[j].translation() - here).norm();
-    const double reach = MatchWindow(params, travelled);
-    if (d < closest && d < params.revisit_radius + reach - params.match_window) {
+    const double window_j = MatchWindow(params, travelled);
+    if (d < closest && d < params.revisit_radius + window_j - params.match_window) {
       closest = d;
       earlier = j;
-      window = reach;
+      window = window_j;
     }
   }
   if (!earlier) return std::nullopt;
