@@ -4,10 +4,12 @@
 
 #include <cmath>
 #include <limits>
+#include <span>
 #include <tuple>
 #include <vector>
 
 #include "common/sim/simulator.h"
+#include "common/sim/trajectory.h"
 #include "common/sim/world.h"
 #include "common/slam/slam_testing.h"
 #include "common/util/error.h"
@@ -92,10 +94,7 @@ TEST(LoopDetectorTest, ARevisitFarOffAfterALongPathIsFoundOnlyWithTheGrowingWind
   std::vector<Pose2> poses(r.truth.begin(), r.truth.begin() + r.later + 1);
   const Pose2 at = poses.back();
   poses.back() = Pose2(at.x() + 2.0, at.y() - 1.3, at.theta() + 0.05);
-  double path = 0.0;
-  for (std::size_t k = r.earlier; k < r.later; ++k) {
-    path += (r.truth[k + 1].translation() - r.truth[k].translation()).norm();
-  }
+  const double path = PathLength(std::span(r.truth).subspan(r.earlier, r.later - r.earlier + 1));
   LoopDetectionParams params;
   params.match_window_per_metre = 0.0;
   EXPECT_FALSE(DetectLoop(r.log.scans, poses, r.later, params).has_value());
