@@ -28,7 +28,7 @@ struct LoopDetectionParams {
   // that path, up to max_match_window, and the revisit radius grows with it. ACES's long loops
   // come back 2 to 4 m off along its corridors (docs/rss_slam.md).
   double match_window_per_metre = 0.02;
-  double max_match_window = 3.0;  // m
+  double max_match_window = 5.0;  // m
   // The match is trusted when this fraction of the scan's returns land near the place's
   // obstacles (the likelihood score's mean, 0 to 1)...
   double min_score = 0.8;

@@ -87,24 +87,59 @@ TEST(LoopDetectorTest, TheWindowGrowsWithThePathBetweenTheVisitsUpToItsLargest) 
   EXPECT_EQ(MatchWindow(params, 1000.0), 1.5);
 }
 
+// The drive back, with the revisiting pose moved (dx, dy) and 0.05 rad off, as after a long
+// loop; `path` is the true path between the two visits.
+struct FarRevisit {
+  Revisit r;
+  std::vector<Pose2> poses;
+  double path = 0.0;
+};
+
+FarRevisit DriveBackFarOff(double dx, double dy) {
+  FarRevisit f{DriveBack(), {}, 0.0};
+  const Revisit& r = f.r;
+  f.poses.assign(r.truth.begin(), r.truth.begin() + r.later + 1);
+  const Pose2 at = f.poses.back();
+  f.poses.back() = Pose2(at.x() + dx, at.y() + dy, at.theta() + 0.05);
+  f.path = PathLength(std::span(r.truth).subspan(r.earlier, r.later - r.earlier + 1));
+  return f;
+}
+
+// The loop's relative pose is the true one, within 5 cm and a degree (eq. 7 uses the
+// translation only).
+void ExpectTrueRelativePose(const Revisit& r, const LoopClosure& loop) {
+  const Pose2 truth = r.truth[loop.constraint.earlier].inverse() * r.truth[r.later];
+  const Pose2 error = truth.inverse() * loop.constraint.relative;
+  EXPECT_LT(error.translation().norm(), 0.05);
+  EXPECT_LT(std::abs(error.theta()), 0.02);
+}
+
 // A revisit 2.4 m off, as on ACES after a long loop: beyond the fixed window and radius, found
 // once they grow with the path.
 TEST(LoopDetectorTest, ARevisitFarOffAfterALongPathIsFoundOnlyWithTheGrowingWindow) {
-  const Revisit r = DriveBack();
-  std::vector<Pose2> poses(r.truth.begin(), r.truth.begin() + r.later + 1);
-  const Pose2 at = poses.back();
-  poses.back() = Pose2(at.x() + 2.0, at.y() - 1.3, at.theta() + 0.05);
-  const double path = PathLength(std::span(r.truth).subspan(r.earlier, r.later - r.earlier + 1));
+  const FarRevisit f = DriveBackFarOff(2.0, -1.3);
   LoopDetectionParams params;
   params.match_window_per_metre = 0.0;
-  EXPECT_FALSE(DetectLoop(r.log.scans, poses, r.later, params).has_value());
-  params.match_window_per_metre = params.max_match_window / path;
-  const auto loop = DetectLoop(r.log.scans, poses, r.later, params);
+  EXPECT_FALSE(DetectLoop(f.r.log.scans, f.poses, f.r.later, params).has_value());
+  params.match_window_per_metre = params.max_match_window / f.path;
+  const auto loop = DetectLoop(f.r.log.scans, f.poses, f.r.later, params);
   ASSERT_TRUE(loop.has_value());
-  const Pose2 truth = r.truth[loop->constraint.earlier].inverse() * r.truth[r.later];
-  const Pose2 error = truth.inverse() * loop->constraint.relative;
-  EXPECT_LT(error.translation().norm(), 0.05);
-  EXPECT_LT(std::abs(error.theta()), 0.02);  // within a degree; eq. 7 uses the translation only
+  ExpectTrueRelativePose(f.r, *loop);
+}
+
+// A revisit 3.9 m off, as ACES's pass at scan 4,880 through the place of scan 2,370: beyond a
+// window that stops at 3 m, found within the default largest window.
+TEST(LoopDetectorTest, ARevisitFourMetresOffIsFoundOnlyWithinTheLargestWindow) {
+  const FarRevisit f = DriveBackFarOff(3.4, -1.9);
+  LoopDetectionParams params;
+  ASSERT_GE(params.max_match_window, 5.0);
+  params.match_window_per_metre = params.max_match_window / f.path;
+  const auto loop = DetectLoop(f.r.log.scans, f.poses, f.r.later, params);
+  ASSERT_TRUE(loop.has_value());
+  ExpectTrueRelativePose(f.r, *loop);
+  params.max_match_window = 3.0;
+  params.match_window_per_metre = params.max_match_window / f.path;
+  EXPECT_FALSE(DetectLoop(f.r.log.scans, f.poses, f.r.later, params).has_value());
 }
 
 TEST(LoopDetectorTest, RefusesBadParametersAndScansWithoutPoses) {
