@@ -27,11 +27,20 @@ void ValidateLocalSearchParams(const LocalSearchParams& p) {
     throw Error("local search: the maximum step error must be finite and not negative");
   if (p.particles < 2) throw Error("local search: at least 2 particles are needed");
   if (p.iterations == 0) throw Error("local search: at least 1 iteration is needed");
+  if (!(p.turn_error_per_rad >= 0.0) || !std::isfinite(p.turn_error_per_rad))
+    throw Error(
+        "local search: the heading error per radian turned must be finite and not negative");
   if (p.recentres > 100) throw Error("local search: at most 100 recentred searches per step");
   if (!(p.resolution > 0.0)) throw Error("local search: the map resolution must be positive");
   if (!(p.margin >= 0.0)) throw Error("local search: the map margin must not be negative");
   if (!std::isfinite(p.frontier_margin))
     throw Error("local search: the frontier margin must be finite");
+}
+
+Eigen::Vector3d StepErrorCube(const LocalSearchParams& params, const Pose2& odometry_step) {
+  Eigen::Vector3d cube = params.max_error;
+  cube.z() += params.turn_error_per_rad * std::abs(odometry_step.theta());
+  return cube;
 }
 
 HitCountGrid EmptyMapFor(const Dataset& dataset, const LocalSearchParams& params) {
@@ -99,11 +108,14 @@ StepCorrection CorrectLogStep(const HitCountGrid& map, const Dataset& dataset, s
                               Rng rng) {
   const LaserScan& scan = dataset.scans[i];
   const LaserScan& previous = dataset.scans[i - 1];
-  const Pose2 predicted = previous_pose * (previous.odometry.inverse() * scan.odometry);
-  if (params.frontier_margin < 0.0) return CorrectStep(map, scan, predicted, params, rng);
+  const Pose2 step = previous.odometry.inverse() * scan.odometry;
+  const Pose2 predicted = previous_pose * step;
+  LocalSearchParams for_step = params;
+  for_step.max_error = StepErrorCube(params, step);
+  if (params.frontier_margin < 0.0) return CorrectStep(map, scan, predicted, for_step, rng);
   const LaserScan scored =
       WithinPreviousReach(scan, predicted, previous, previous_pose, params.frontier_margin);
-  return CorrectStep(map, scored, predicted, params, rng);
+  return CorrectStep(map, scored, predicted, for_step, rng);
 }
 
 LocalSearchResult RunLocalSearch(const Dataset& dataset, const LocalSearchParams& params,

@@ -22,6 +22,10 @@ struct LocalSearchParams {
   // The cube the error is searched in: +-x, +-y (m), +-theta (rad) per step. 002 gives no size;
   // these cover a wheeled robot's error over one step of a few tens of centimetres.
   Eigen::Vector3d max_error{0.1, 0.1, 0.05};
+  // A wheeled robot's heading error grows with how far it turns: the cube's heading half-width
+  // grows by this fraction of the turn odometry reports for the step. Without it, fast turns
+  // (0.3 rad between two ACES scans) end on the cube's face and leave the map a few degrees off.
+  double turn_error_per_rad = 0.6;
   std::size_t particles = 10;  // 002
   std::size_t iterations = 30;
   double inertia = 0.7;
@@ -43,6 +47,9 @@ struct LocalSearchParams {
 };
 
 void ValidateLocalSearchParams(const LocalSearchParams& params);
+
+// The cube the local search corrects a step in, given the step odometry reports.
+Eigen::Vector3d StepErrorCube(const LocalSearchParams& params, const Pose2& odometry_step);
 
 // The map a log's scans can reach: the odometry's path widened by the laser's range and
 // params.margin.

@@ -62,6 +62,41 @@ TEST(CorrectStepTest, RecentredSearchesReachAnErrorBeyondTheCube) {
   EXPECT_LT(heading_error(near.pose), 0.01);
 }
 
+TEST(StepErrorCubeTest, TheHeadingRangeGrowsWithTheTurnOdometryReports) {
+  LocalSearchParams params;
+  params.max_error = Eigen::Vector3d(0.1, 0.08, 0.05);
+  params.turn_error_per_rad = 0.5;
+  EXPECT_EQ(StepErrorCube(params, Pose2(0.3, 0.0, 0.0)), params.max_error);
+  const Eigen::Vector3d turning = StepErrorCube(params, Pose2(0.1, 0.0, -0.4));
+  EXPECT_EQ(turning.head<2>(), params.max_error.head<2>());
+  EXPECT_DOUBLE_EQ(turning.z(), 0.05 + 0.5 * 0.4);
+}
+
+// A fast turn whose odometry overstates it by 0.25 rad, more than two recentred cubes of
+// +-0.05 rad reach: only a heading range that grows with the turn finds the true heading.
+TEST(CorrectLogStepTest, AFastTurnsHeadingErrorIsFoundWhenTheCubeGrowsWithTheTurn) {
+  const LineMap room = testing::BoxRoom();
+  HitCountGrid map(0.05, Eigen::Vector2d(-1.0, -1.0), 180, 200);
+  const Pose2 start(2.8, 2.2, 0.3);
+  for (int i = 0; i < 5; ++i) {
+    const Pose2 pose = start * Pose2(-0.1 * (4 - i), 0.0, 0.0);
+    map.AddScan(testing::ScanFrom(room, pose), pose);
+  }
+  const Pose2 truth = start * Pose2(0.05, 0.0, 0.9);
+  Dataset drive;
+  drive.scans = {testing::ScanFrom(room, start), testing::ScanFrom(room, truth)};
+  drive.scans[0].odometry = start;
+  drive.scans[1].odometry = start * Pose2(0.05, 0.0, 0.9 + 0.25);
+  const auto heading_error = [&](double per_rad) {
+    LocalSearchParams params;
+    params.turn_error_per_rad = per_rad;
+    const StepCorrection c = CorrectLogStep(map, drive, 1, start, params, Rng(4));
+    return std::abs((truth.inverse() * c.pose).theta());
+  };
+  EXPECT_GT(heading_error(0.0), 0.05);
+  EXPECT_LT(heading_error(0.6), 0.01);
+}
+
 // Down a hall longer than the laser's reach every scan sees its walls a step farther on. The end
 // points past the previous scan's reach land off the map whatever the pose, and fewer of them do
 // the shorter the step: scored, they pull every step short.

@@ -42,6 +42,7 @@ RssSlamParams RssSlamParamsFromProto(const proto::SlamParams& p) {
   if (p.has_margin_m()) l.margin = p.margin_m();
   if (p.has_local_recentres()) l.recentres = p.local_recentres();
   if (p.has_local_frontier_margin_m()) l.frontier_margin = p.local_frontier_margin_m();
+  if (p.has_local_turn_error_per_rad()) l.turn_error_per_rad = p.local_turn_error_per_rad();
   if (p.has_local_only()) r.global_search = !p.local_only();
   if (p.has_global_every()) r.global_every = p.global_every();
   GlobalSearchParams& g = r.global;
@@ -99,6 +100,7 @@ proto::SlamParams CompleteSlamParams(const proto::SlamParams& given) {
   p.set_margin_m(l.margin);
   p.set_local_recentres(static_cast<std::uint32_t>(l.recentres));
   p.set_local_frontier_margin_m(l.frontier_margin);
+  p.set_local_turn_error_per_rad(l.turn_error_per_rad);
   p.set_local_only(!r.global_search);
   p.set_global_every(static_cast<std::uint32_t>(r.global_every));
   const GlobalSearchParams& g = r.global;

@@ -43,6 +43,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   p.set_partitions(5);
   p.set_global_beam_stride(1);
   p.set_local_frontier_margin_m(0.15);
+  p.set_local_turn_error_per_rad(0.0);
   p.set_min_eq7_gain(0.1);
   p.set_match_window_per_m(0.0);
   p.set_max_match_window_m(2.5);
@@ -56,6 +57,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   EXPECT_EQ(r.global.partitions, 5u);
   EXPECT_EQ(r.global.beam_stride, 1u);
   EXPECT_EQ(r.local.frontier_margin, 0.15);
+  EXPECT_EQ(r.local.turn_error_per_rad, 0.0);
   EXPECT_EQ(r.min_eq7_gain, 0.1);
   EXPECT_EQ(r.loops.match_window_per_metre, 0.0);
   EXPECT_EQ(r.loops.max_match_window, 2.5);
@@ -91,6 +93,9 @@ TEST(SlamParamsTest, BadFieldsAreNamed) {
   p = {};
   p.set_local_frontier_margin_m(std::numeric_limits<double>::quiet_NaN());
   EXPECT_NE(ErrorOf(p).find("frontier margin"), std::string::npos);
+  p = {};
+  p.set_local_turn_error_per_rad(-0.1);
+  EXPECT_NE(ErrorOf(p).find("per radian turned"), std::string::npos);
   p = {};
   p.set_min_eq7_gain(1.0);
   EXPECT_NE(ErrorOf(p).find("eq. 7 gain"), std::string::npos);
