@@ -208,9 +208,10 @@ TEST(RssSlamAccuracyTest, OnTheIntelLabTheGlobalSearchesOrATurnWideCubeHalveTheF
   }
   const Dataset d = ReadCarmen(dir / "intel.clf.bz2");
   const std::vector<Relation> relations = ReadRelations(dir / "intel.relations");
+  constexpr std::size_t kScans = 3000;
   const auto run = [&](double turn_error_per_rad, bool global_search) {
     RssSlamParams params;
-    params.max_scans = 3000;
+    params.max_scans = kScans;
     params.local.turn_error_per_rad = turn_error_per_rad;
     params.global_search = global_search;
     const RssSlamResult r = RunRssSlam(d, params, 1);
@@ -220,7 +221,7 @@ TEST(RssSlamAccuracyTest, OnTheIntelLabTheGlobalSearchesOrATurnWideCubeHalveTheF
     return ComputeRelationErrors(r.trajectory, relations);
   };
   std::vector<StampedPose> odometry;
-  for (std::size_t i = 0; i < 3000; ++i) {
+  for (std::size_t i = 0; i < kScans; ++i) {
     odometry.push_back({d.scans[i].timestamp, d.scans[i].odometry});
   }
   const RelationErrors e_odometry = ComputeRelationErrors(odometry, relations);
