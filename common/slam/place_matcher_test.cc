@@ -2,8 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "common/sim/simulator.h"
@@ -47,23 +49,59 @@ TEST(PlaceMatcherTest, FindsAScanOfThePlaceFromAFarGuess) {
   EXPECT_GT((narrow.pose.translation() - truth.translation()).norm(), 0.2);
 }
 
-// A corridor with nothing but its two long walls in the laser's reach matches as well anywhere
-// along it: the best pose is no better than its rivals, which a loop detector must not trust.
-TEST(PlaceMatcherTest, AFeaturelessCorridorIsNotDistinct) {
+// A drive down a corridor, along world x, with nothing but its two long walls in the laser's
+// reach; the place is every scan at its true pose.
+struct Corridor {
+  Dataset log;
+  PlaceMatcher place;
+};
+
+Corridor DriveDownACorridor() {
   const World corridor = WorldFromLineMap(LineMap({{{0, 0}, {40, 0}}, {{0, 2}, {40, 2}}}),
                                           "corridor", {{2, 1}, {38, 1}});
   SimulationOptions sim;
   sim.laser.max_range = 4.0;
   sim.max_scans = 60;
-  const Dataset d = Simulate(corridor, sim);
+  Dataset log = Simulate(corridor, sim);
   std::vector<Pose2> poses;
-  for (const LaserScan& s : d.scans) poses.push_back(*s.true_pose);
-  const PlaceMatcher place(d.scans, poses, 0.05, 0.1, 1.0);
-  const LaserScan& scan = d.scans[30];
+  for (const LaserScan& s : log.scans) poses.push_back(*s.true_pose);
+  PlaceMatcher place(log.scans, poses, 0.05, 0.1, 1.0);
+  return {std::move(log), std::move(place)};
+}
+
+// Such a corridor matches as well anywhere along it: the best pose is no better than its
+// rivals, which a loop detector must not trust.
+TEST(PlaceMatcherTest, AFeaturelessCorridorIsNotDistinct) {
+  const Corridor c = DriveDownACorridor();
+  const PlaceMatcher& place = c.place;
+  const LaserScan& scan = c.log.scans[30];
   const PlaceMatcher::Match m =
       place.Search(ReturnPoints(scan), *scan.true_pose * Pose2(0.5, 0.1, 0.05), 1.0, 0.3, 0.3);
   EXPECT_GT(m.score, 0.8);          // it fits...
   EXPECT_LT(m.distinctness, 0.02);  // ...but as well 0.3 m or more along the corridor
+}
+
+// The spread says which way a match can be trusted: a corridor's walls pin a scan across it and
+// leave it loose along it; the office's furniture pins it both ways.
+TEST(PlaceMatcherTest, TheSpreadIsLongAlongACorridorAndShortInAnOffice) {
+  const Corridor c = DriveDownACorridor();
+  const PlaceMatcher& hallway = c.place;
+  const LaserScan& scan = c.log.scans[30];
+  const Pose2 guess = *scan.true_pose * Pose2(0.5, 0.1, 0.05);
+  const PlaceMatcher::Match loose = hallway.Search(ReturnPoints(scan), guess, 1.0, 0.3, 0.3, 0.02);
+  EXPECT_GT(loose.spread(0, 0), 0.1);    // along: about the whole +-1 m window
+  EXPECT_LT(loose.spread(1, 1), 0.002);  // across: within the lattice's 0.1 m step
+  // Without a score scale there is no spread.
+  EXPECT_EQ(hallway.Search(ReturnPoints(scan), guess, 1.0, 0.3, 0.3).spread,
+            Eigen::Matrix2d::Zero());
+
+  const Dataset office = Drive();
+  const PlaceMatcher room = PlaceOf(office);
+  const LaserScan& there = office.scans[10];
+  const PlaceMatcher::Match pinned = room.Search(
+      ReturnPoints(there), *there.true_pose * Pose2(0.6, -0.4, 0.2), 1.0, 0.3, 0.3, 0.02);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(pinned.spread);
+  EXPECT_LT(eigen.eigenvalues().maxCoeff(), 0.002);
 }
 
 TEST(PlaceMatcherTest, ScoresAreMeanLikelihoods) {
