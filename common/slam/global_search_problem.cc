@@ -1,5 +1,6 @@
 #include "common/slam/global_search_problem.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -139,7 +140,15 @@ void GlobalSearchProblem::Score(const Eigen::Ref<const Eigen::VectorXd>& x, Scra
     const Pose2 earlier =
         loop_->earlier < first_ ? loop_earlier_pose_ : poses[loop_->earlier - first_];
     const Pose2 expected = earlier * loop_->relative;
-    distance = (poses[loop_->later - first_].translation() - expected.translation()).norm();
+    const Eigen::Vector2d miss =
+        poses[loop_->later - first_].translation() - expected.translation();
+    if (loop_->weight.isIdentity(0.0)) {
+      distance = miss.norm();
+    } else {
+      // In the earlier scan's frame, where the match's weight was taken.
+      const Eigen::Vector2d local = Eigen::Rotation2Dd(-earlier.theta()) * miss;
+      distance = std::sqrt(std::max(0.0, local.dot(loop_->weight * local)));
+    }
   }
   fitness[1] = params_.w1 * conflicts + params_.w2 * distance;
 }

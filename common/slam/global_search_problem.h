@@ -36,6 +36,10 @@ struct LoopConstraint {
   std::size_t earlier = 0;
   std::size_t later = 0;
   Pose2 relative;
+  // Eq. 7 measures how far `later` lands from there, d in `earlier`'s frame, as sqrt(d' W d).
+  // W's largest eigenvalue is 1: the identity gives 002's distance, and a match that only pins
+  // the place across a corridor gives a W that barely counts a miss along it.
+  Eigen::Matrix2d weight = Eigen::Matrix2d::Identity();
 };
 
 // The global search's problem over the poses of scans [first, last). The steps between them
@@ -47,7 +51,8 @@ struct LoopConstraint {
 // scans of [first, last) re-inserted at their corrected poses into `base`, which holds every
 // other scan), and eq. 7
 // negated (w1 x the corrected poses that stand on an occupied cell + w2 x how far the loop's
-// later pose lands from where the constraint puts it; no constraint, no second term).
+// later pose lands from where the constraint puts it, as its weight measures it; no constraint,
+// no second term).
 class GlobalSearchProblem : public Problem {
  public:
   // `poses` holds the current poses of scans [0, last). The pose of scan max(first, 1) - 1 is

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
@@ -106,9 +107,11 @@ Scored ScoreAsWritten(std::span<const LaserScan> scans, std::span<const Pose2> p
   if (loop) {
     const Pose2 earlier =
         loop->earlier < first ? poses[loop->earlier] : r.poses[loop->earlier - first];
+    const Eigen::Vector2d miss =
+        r.poses[loop->later - first].translation() - (earlier * loop->relative).translation();
+    const Eigen::Vector2d local = Eigen::Rotation2Dd(-earlier.theta()).toRotationMatrix() * miss;
     distance =
-        (r.poses[loop->later - first].translation() - (earlier * loop->relative).translation())
-            .norm();
+        loop->weight.isIdentity(0.0) ? miss.norm() : std::sqrt(local.dot(loop->weight * local));
   }
   r.fitness[1] = params.w1 * conflicts + params.w2 * distance;
   return r;
@@ -129,9 +132,13 @@ TEST(GlobalSearchProblemTest, ScoresRandomCandidatesToTheBitAsTheEquationsAreWri
     LoopConstraint loop;
     std::size_t beam_stride;
   };
-  for (const Case& c : {Case{0, 40, {5, 35, odometry[5].inverse() * odometry[35] * nudge}, 1},
-                        Case{30, 70, {10, 60, odometry[10].inverse() * odometry[60] * nudge}, 2},
-                        Case{30, 70, {40, 65, odometry[40].inverse() * odometry[65] * nudge}, 3}}) {
+  // A loop matched along a corridor: a miss along its length barely counts.
+  Eigen::Matrix2d corridor;
+  corridor << 0.2, 0.3, 0.3, 1.0;
+  for (const Case& c :
+       {Case{0, 40, {5, 35, odometry[5].inverse() * odometry[35] * nudge}, 1},
+        Case{30, 70, {10, 60, odometry[10].inverse() * odometry[60] * nudge}, 2},
+        Case{30, 70, {40, 65, odometry[40].inverse() * odometry[65] * nudge, corridor}, 3}}) {
     HitCountGrid others = base;
     for (std::size_t i = 0; i < log.scans.size(); ++i) {
       if (i < c.first || i >= c.last) others.AddScan(log.scans[i], odometry[i]);
@@ -175,6 +182,36 @@ TEST(GlobalSearchProblemTest, ScoresRandomCandidatesToTheBitAsTheEquationsAreWri
 
 namespace evoslam {
 namespace {
+
+// Eq. 7's loop term measures the miss in the earlier scan's frame through the loop's weight:
+// along the direction the match cannot pin, the later pose may land off at little cost.
+TEST(GlobalSearchProblemTest, TheLoopsWeightDiscountsAMissAlongWhatTheMatchCouldNotPin) {
+  SimulationOptions sim;
+  sim.laser.beams = 31;
+  sim.max_scans = 30;
+  const Dataset log = Simulate(BuiltinWorld("office-cluster"), sim);
+  std::vector<Pose2> poses;
+  for (const LaserScan& s : log.scans) poses.push_back(s.odometry);
+  const HitCountGrid empty(0.05, Eigen::Vector2d(-2, -2), 600, 460);
+  GlobalSearchParams params;
+  params.w1 = 0.0;
+  params.w2 = 1.0;
+  // The loop puts the later pose 0.3 m back along the earlier scan's x axis from where it is.
+  const Eigen::Vector2d expected =
+      poses[25].translation() - Eigen::Rotation2Dd(poses[5].theta()) * Eigen::Vector2d(0.3, 0.0);
+  LoopConstraint loop{5, 25, poses[5].inverse() * Pose2(expected, poses[25].theta())};
+  const auto eq7 = [&](const LoopConstraint& l) {
+    const GlobalSearchProblem problem(log.scans, poses, 10, 30, empty, params, l);
+    std::vector<double> fitness(2);
+    problem.Evaluate(problem.Identity(), fitness);
+    return fitness[1];
+  };
+  EXPECT_NEAR(eq7(loop), 0.3, 1e-9);   // the identity: 002's distance
+  loop.weight << 0.01, 0.0, 0.0, 1.0;  // x barely pinned
+  EXPECT_NEAR(eq7(loop), 0.03, 1e-9);
+  loop.weight << 1.0, 0.0, 0.0, 0.01;  // y barely pinned: the miss along x counts in full
+  EXPECT_NEAR(eq7(loop), 0.3, 1e-9);
+}
 
 TEST(PickGlobalSolutionTest, LowestSecondObjectiveOfTheFirstFrontWithinTheBound) {
   Eigen::MatrixXd f(2, 5);

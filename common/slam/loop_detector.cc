@@ -1,5 +1,6 @@
 #include "common/slam/loop_detector.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -13,6 +14,9 @@ namespace {
 
 constexpr double kFieldResolution = 0.05;  // m
 constexpr double kFieldSigma = 0.1;        // m: a few cells, so the coarse lattice sees the peak
+// The variance of a uniform error over the coarse lattice's step (two cells): the least a spread
+// can say about a direction.
+constexpr double kLatticeVariance = (2 * kFieldResolution) * (2 * kFieldResolution) / 12.0;
 
 }  // namespace
 
@@ -35,6 +39,29 @@ void ValidateLoopDetectionParams(const LoopDetectionParams& p) {
     throw Error("loop detection: the rival distance must be positive and within the match window");
   if (!(p.fit_tolerance >= 0.0) || !(p.fit_tolerance_theta >= 0.0))
     throw Error("loop detection: the fit tolerances must not be negative");
+  if (!(p.spread_score >= 0.0) || !std::isfinite(p.spread_score))
+    throw Error("loop detection: the spread's score scale must be finite and not negative");
+}
+
+Eigen::Matrix2d LoopWeight(const Eigen::Matrix2d& spread, double heading) {
+  const Eigen::Matrix2d r = Eigen::Rotation2Dd(-heading).toRotationMatrix();
+  const Eigen::Matrix2d covariance =
+      r * spread * r.transpose() + kLatticeVariance * Eigen::Matrix2d::Identity();
+  const double a = covariance(0, 0), b = 0.5 * (covariance(0, 1) + covariance(1, 0));
+  const double c = covariance(1, 1);
+  const double smallest = 0.5 * (a + c - std::hypot(a - c, 2.0 * b));
+  // The inverse written out, so that the weight is exactly symmetric.
+  Eigen::Matrix2d weight;
+  weight << c, -b, -b, a;
+  return smallest / (a * c - b * b) * weight;
+}
+
+bool FitsWhereItIs(const Pose2& shift, const Eigen::Matrix2d& weight,
+                   const LoopDetectionParams& params) {
+  const Eigen::Vector2d t = shift.translation();
+  const double miss =
+      weight.isIdentity(0.0) ? t.norm() : std::sqrt(std::max(0.0, t.dot(weight * t)));
+  return miss <= params.fit_tolerance && std::abs(shift.theta()) <= params.fit_tolerance_theta;
 }
 
 double MatchWindow(const LoopDetectionParams& params, double travelled) {
@@ -81,20 +108,21 @@ std::optional<LoopClosure> DetectLoop(std::span<const LaserScan> scans,
   const PlaceMatcher place(scans.subspan(lo, hi - lo), poses.subspan(lo, hi - lo), kFieldResolution,
                            kFieldSigma, window);
   const std::vector<Eigen::Vector2d> points = ReturnPoints(scans[current]);
-  const PlaceMatcher::Match match = place.Search(points, poses[current], window,
-                                                 params.match_window_theta, params.rival_distance);
+  const PlaceMatcher::Match match =
+      place.Search(points, poses[current], window, params.match_window_theta, params.rival_distance,
+                   params.spread_score);
   if (match.score < params.min_score || match.distinctness < params.min_distinctness) {
     return std::nullopt;
   }
 
-  // Does the scan fit where the trajectory puts it?
+  const bool weighted = params.spread_score > 0.0;
   const Pose2 shift = poses[current].inverse() * match.pose;
-  if (shift.translation().norm() <= params.fit_tolerance &&
-      std::abs(shift.theta()) <= params.fit_tolerance_theta) {
-    return std::nullopt;
-  }
-  return LoopClosure{
-      {*earlier, current, poses[*earlier].inverse() * match.pose}, match.score, match.distinctness};
+  const Eigen::Matrix2d weight_here = weighted ? LoopWeight(match.spread, poses[current].theta())
+                                               : Eigen::Matrix2d(Eigen::Matrix2d::Identity());
+  if (FitsWhereItIs(shift, weight_here, params)) return std::nullopt;
+  LoopConstraint constraint{*earlier, current, poses[*earlier].inverse() * match.pose};
+  if (weighted) constraint.weight = LoopWeight(match.spread, poses[*earlier].theta());
+  return LoopClosure{constraint, match.score, match.distinctness};
 }
 
 }  // namespace evoslam

@@ -1,6 +1,7 @@
 #ifndef EVOSLAM_COMMON_SLAM_LOOP_DETECTOR_H_
 #define EVOSLAM_COMMON_SLAM_LOOP_DETECTOR_H_
 
+#include <Eigen/Core>
 #include <cstddef>
 #include <optional>
 #include <span>
@@ -36,6 +37,12 @@ struct LoopDetectionParams {
   // min_distinctness (docs/rss_slam.md)...
   double min_distinctness = 0.05;
   double rival_distance = 0.3;  // m
+  // Above 0, a loop's match weighs eq. 7's miss by direction: a lattice pose whose score is this
+  // much below the best counts 1/e as much in the match's spread (PlaceMatcher::Match), and a
+  // miss along a direction the spread is long in counts for little. 0 (the default): every
+  // direction counts the same, as in 002; weighting was no better on the real logs
+  // (docs/accuracy.md).
+  double spread_score = 0.0;
   // ...and the scan does not fit where the trajectory puts it when the match moves it further
   // than this.
   double fit_tolerance = 0.1;         // m
@@ -52,6 +59,19 @@ void ValidateLoopDetectionParams(const LoopDetectionParams& params);
 // The match window's half-width (m) for a revisit `travelled` metres of path after the earlier
 // visit; the revisit radius is revisit_radius plus what this adds to match_window.
 double MatchWindow(const LoopDetectionParams& params, double travelled);
+
+// Eq. 7's weight of a loop (LoopConstraint::weight) from its match's spread (world frame), in
+// the frame of an earlier pose at `heading`: the inverse of the spread plus the lattice's own
+// variance, scaled so that its largest eigenvalue is 1.
+Eigen::Matrix2d LoopWeight(const Eigen::Matrix2d& spread, double heading);
+
+// Whether a scan that its match moves by `shift` (in the scan's frame) already fits where the
+// trajectory puts it: within fit_tolerance_theta, and within fit_tolerance as `weight` (in the
+// scan's frame) measures the translation, sqrt(t' W t). Measured as eq. 7 measures the loop's
+// miss, a loop that a search closed as far as its match pins it down is not found again at the
+// next check.
+bool FitsWhereItIs(const Pose2& shift, const Eigen::Matrix2d& weight,
+                   const LoopDetectionParams& params);
 
 // A place seen twice, found by matching.
 struct LoopClosure {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <limits>
 #include <span>
@@ -53,6 +54,16 @@ TEST(LoopDetectorTest, ARevisitThatDoesNotFitIsALoopWithTheTrueRelativePose) {
   EXPECT_LT(error.translation().norm(), 0.05);
   EXPECT_LT(std::abs(error.theta()), 0.01);
   EXPECT_GE(loop->score, params.min_score);
+  // By default the weight is 002's identity.
+  EXPECT_EQ(loop->constraint.weight, Eigen::Matrix2d::Identity());
+  // Weighted, the office pins the match both ways, so eq. 7 counts a miss about alike in every
+  // direction.
+  params.spread_score = 0.01;
+  const auto weighted = DetectLoop(r.log.scans, poses, r.later, params);
+  ASSERT_TRUE(weighted.has_value());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(weighted->constraint.weight);
+  EXPECT_NEAR(eigen.eigenvalues().maxCoeff(), 1.0, 1e-9);
+  EXPECT_GT(eigen.eigenvalues().minCoeff(), 0.3);
 }
 
 TEST(LoopDetectorTest, ARevisitThatFitsIsNoLoop) {
@@ -161,6 +172,44 @@ TEST(LoopDetectorTest, RefusesBadParametersAndScansWithoutPoses) {
   params = {};
   params.max_match_window = params.match_window - 0.1;
   EXPECT_THROW(ValidateLoopDetectionParams(params), Error);
+  params = {};
+  params.spread_score = -0.01;
+  EXPECT_THROW(ValidateLoopDetectionParams(params), Error);
+}
+
+// A match pinned in every direction weighs every direction alike; one loose along a direction
+// of the world weighs a miss along it, in the earlier scan's frame, by about the ratio of the
+// lattice's variance to the spread.
+TEST(LoopWeightTest, IsTheNormalisedInverseSpreadInTheEarlierFrame) {
+  EXPECT_TRUE(LoopWeight(Eigen::Matrix2d::Zero(), 0.7).isApprox(Eigen::Matrix2d::Identity()));
+  Eigen::Matrix2d along_world_x;
+  along_world_x << 0.25, 0.0, 0.0, 0.0;
+  // Facing world y, the earlier scan sees world x as its -y axis.
+  const Eigen::Matrix2d w = LoopWeight(along_world_x, M_PI / 2);
+  EXPECT_NEAR(w(0, 0), 1.0, 1e-9);
+  EXPECT_NEAR(w(0, 1), 0.0, 1e-9);
+  EXPECT_GT(w(1, 1), 0.0);
+  EXPECT_LT(w(1, 1), 0.01);
+  // The same spread in the frame it was taken in.
+  const Eigen::Matrix2d same = LoopWeight(along_world_x, 0.0);
+  EXPECT_NEAR(same(0, 0), w(1, 1), 1e-12);
+  EXPECT_NEAR(same(1, 1), 1.0, 1e-9);
+}
+
+// A shift fits within the tolerances as the loop's weight measures it, so a loop that a search
+// closed across a corridor, and left open along it, does not fit any worse at the next check.
+TEST(FitsWhereItIsTest, MeasuresTheShiftThroughTheWeight) {
+  const LoopDetectionParams params;  // 0.1 m and 0.02 rad
+  const Eigen::Matrix2d same = Eigen::Matrix2d::Identity();
+  EXPECT_TRUE(FitsWhereItIs(Pose2(0.06, -0.079, 0.02), same, params));
+  EXPECT_FALSE(FitsWhereItIs(Pose2(0.07, -0.08, 0.0), same, params));
+  EXPECT_FALSE(FitsWhereItIs(Pose2(0.0, 0.0, 0.021), same, params));
+  Eigen::Matrix2d loose_in_x;
+  loose_in_x << 0.04, 0.0, 0.0, 1.0;
+  EXPECT_TRUE(FitsWhereItIs(Pose2(0.45, 0.0, 0.0), loose_in_x, params));  // counts as 0.09 m
+  EXPECT_FALSE(FitsWhereItIs(Pose2(0.55, 0.0, 0.0), loose_in_x, params));
+  EXPECT_FALSE(FitsWhereItIs(Pose2(0.0, 0.15, 0.0), loose_in_x, params));
+  EXPECT_FALSE(FitsWhereItIs(Pose2(0.45, 0.0, 0.03), loose_in_x, params));
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "common/slam/slam_params.h"
 
+#include <cmath>
 #include <string>
 
 #include "common/util/error.h"
@@ -76,6 +77,7 @@ RssSlamParams RssSlamParamsFromProto(const proto::SlamParams& p) {
   if (p.has_check_interval_scans()) d.check_interval = p.check_interval_scans();
   if (p.has_min_distinctness()) d.min_distinctness = p.min_distinctness();
   if (p.has_rival_distance_m()) d.rival_distance = p.rival_distance_m();
+  if (p.has_match_spread_score()) d.spread_score = p.match_spread_score();
   ValidateRssSlamParams(r);
   return r;
 }
@@ -134,6 +136,7 @@ proto::SlamParams CompleteSlamParams(const proto::SlamParams& given) {
   p.set_check_interval_scans(static_cast<std::uint32_t>(d.check_interval));
   p.set_min_distinctness(d.min_distinctness);
   p.set_rival_distance_m(d.rival_distance);
+  p.set_match_spread_score(d.spread_score);
   return p;
 }
 
@@ -145,6 +148,10 @@ proto::LoopClosureRecord ToProto(const LoopClosure& loop) {
   for (double v : {r.x(), r.y(), r.theta()}) p.add_relative(v);
   p.set_score(loop.score);
   p.set_distinctness(loop.distinctness);
+  const Eigen::Matrix2d& w = loop.constraint.weight;
+  if (w != Eigen::Matrix2d::Identity()) {
+    for (double v : {w(0, 0), w(0, 1), w(1, 1)}) p.add_weight(v);
+  }
   return p;
 }
 
@@ -155,9 +162,24 @@ LoopClosure LoopClosureFromProto(const proto::LoopClosureRecord& r, std::size_t 
                 std::to_string(r.earlier()) + " with " + std::to_string(r.relative_size()) +
                 " relative values does not fit scans [0, " + std::to_string(scans) + ")");
   }
-  return {{r.earlier(), r.later(), Pose2(r.relative(0), r.relative(1), r.relative(2))},
-          r.score(),
-          r.distinctness()};
+  LoopConstraint constraint{r.earlier(), r.later(),
+                            Pose2(r.relative(0), r.relative(1), r.relative(2))};
+  if (r.weight_size() != 0) {
+    const auto& w = r.weight();
+    // Symmetric, positive semi-definite, largest eigenvalue 1 (LoopWeight): anything else would
+    // reward a miss or count it more than 002's distance.
+    const bool valid = r.weight_size() == 3 && w[0] >= 0.0 && w[2] >= 0.0 &&
+                       w[0] * w[2] >= w[1] * w[1] &&
+                       0.5 * (w[0] + w[2] + std::hypot(w[0] - w[2], 2.0 * w[1])) <= 1.0 + 1e-9;
+    if (!valid) {
+      throw Error(what + ": the loop from scan " + std::to_string(r.later()) + " back to " +
+                  std::to_string(r.earlier()) +
+                  " has a weight that is not 3 values (xx, xy, yy) of a positive semi-definite "
+                  "matrix no larger than the identity");
+    }
+    constraint.weight << w[0], w[1], w[1], w[2];
+  }
+  return {constraint, r.score(), r.distinctness()};
 }
 
 proto::GlobalSearchSpec ToProto(const GlobalSearchTask& task) {

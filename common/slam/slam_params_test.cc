@@ -2,10 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
 
+#include "common/slam/loop_detector.h"
 #include "common/util/error.h"
 
 namespace evoslam {
@@ -47,6 +49,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   p.set_min_eq7_gain(0.1);
   p.set_match_window_per_m(0.0);
   p.set_max_match_window_m(2.5);
+  p.set_match_spread_score(0.0);
   p.set_local_fitness("eval2");
   p.set_local_only(true);
   for (double v : {0.2, 0.3, 0.04}) p.add_local_max_error(v);
@@ -61,6 +64,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   EXPECT_EQ(r.min_eq7_gain, 0.1);
   EXPECT_EQ(r.loops.match_window_per_metre, 0.0);
   EXPECT_EQ(r.loops.max_match_window, 2.5);
+  EXPECT_EQ(r.loops.spread_score, 0.0);
   EXPECT_EQ(r.local.fitness, LocalFitness::kEval2);
   EXPECT_FALSE(r.global_search);
   EXPECT_EQ(r.local.max_error, Eigen::Vector3d(0.2, 0.3, 0.04));
@@ -106,6 +110,9 @@ TEST(SlamParamsTest, BadFieldsAreNamed) {
   p.set_max_match_window_m(1.0);  // below the 1.5 m window
   EXPECT_NE(ErrorOf(p).find("largest match window"), std::string::npos);
   p = {};
+  p.set_match_spread_score(-1.0);
+  EXPECT_NE(ErrorOf(p).find("spread's score scale"), std::string::npos);
+  p = {};
   p.set_preset("nope");
   EXPECT_NE(ErrorOf(p).find("nope"), std::string::npos);
 }
@@ -119,6 +126,9 @@ TEST(SlamParamsTest, GlobalSearchTasksRoundTrip) {
   task.last = 4;
   task.poses = poses;
   task.loop = LoopConstraint{0, 3, Pose2(0.1, -0.2, 0.03)};
+  Eigen::Matrix2d spread;  // loose along one diagonal of the world
+  spread << 0.2, 0.15, 0.15, 0.2;
+  task.loop->weight = LoopWeight(spread, 0.4);
   task.max_error = Eigen::Vector3d(0.3, 0.4, 0.05);
   std::vector<Pose2> storage;
   const GlobalSearchTask back = GlobalSearchTaskFromProto(ToProto(task), storage);
@@ -131,6 +141,7 @@ TEST(SlamParamsTest, GlobalSearchTasksRoundTrip) {
   ASSERT_TRUE(back.loop.has_value());
   EXPECT_EQ(back.loop->later, 3u);
   EXPECT_EQ(back.loop->relative.translation(), task.loop->relative.translation());
+  EXPECT_EQ(back.loop->weight, task.loop->weight);
   EXPECT_EQ(back.max_error, task.max_error);
   task.loop.reset();
   EXPECT_FALSE(GlobalSearchTaskFromProto(ToProto(task), storage).loop.has_value());
@@ -156,6 +167,24 @@ TEST(SlamParamsTest, TasksThatDoNotHangTogetherAreRefused) {
   spec = ToProto(task);
   spec.set_first(3);
   EXPECT_THROW(GlobalSearchTaskFromProto(spec, storage), Error);
+  // A loop's weight must be a positive semi-definite matrix no larger than the identity: one
+  // that is not would reward a miss, or count it more than 002 does.
+  task.loop = LoopConstraint{0, 2, Pose2(2, 0, 0)};
+  for (const std::vector<double>& weight :
+       std::vector<std::vector<double>>{{1.0, 0.0},
+                                        {1.0, 2.0, 1.0},
+                                        {1.0, 1.0, 1.0},
+                                        {0.5, std::nan(""), 0.5},
+                                        {-0.1, 0.0, 1.0},
+                                        {2.0, 0.0, 1.0},
+                                        {1.0, 0.0, std::nan("")}}) {
+    spec = ToProto(task);
+    for (double v : weight) spec.mutable_loop()->add_weight(v);
+    EXPECT_THROW(GlobalSearchTaskFromProto(spec, storage), Error);
+  }
+  spec = ToProto(task);
+  for (double v : {1.0, 0.0, 0.5}) spec.mutable_loop()->add_weight(v);
+  EXPECT_EQ(GlobalSearchTaskFromProto(spec, storage).loop->weight(1, 1), 0.5);
 }
 
 }  // namespace
