@@ -37,11 +37,11 @@ struct LoopDetectionParams {
   // min_distinctness (docs/rss_slam.md)...
   double min_distinctness = 0.05;
   double rival_distance = 0.3;  // m
-  // Above 0, a loop's match weighs eq. 7's miss by direction: a lattice pose whose score is this
-  // much below the best counts 1/e as much in the match's spread (PlaceMatcher::Match), and a
-  // miss along a direction the spread is long in counts for little. 0 (the default): every
-  // direction counts the same, as in 002; weighting was no better on the real logs
-  // (docs/accuracy.md).
+  // Above 0, a loop's match weighs its miss by direction, in eq. 7 and in the fit test below: a
+  // lattice pose whose score is this much below the best counts 1/e as much in the match's
+  // spread (PlaceMatcher::Match), and a miss along a direction the spread is long in counts for
+  // little. 0 (the default): every direction counts the same, as in 002; weighting was no
+  // better on the real logs (docs/accuracy.md).
   double spread_score = 0.0;
   // ...and the scan does not fit where the trajectory puts it when the match moves it further
   // than this.
