@@ -92,25 +92,35 @@ void BM_StepCorrectionEvaluate(benchmark::State& state) {
 }
 BENCHMARK(BM_StepCorrectionEvaluate)->Arg(1)->Arg(2)->UseRealTime();
 
-// One match of loop detection, with its default window: scan 25 of the Intel log, put 0.3 m and
-// 0.1 rad off, against the place of scans [0, 51) at their odometry poses.
+// One match of loop detection: scan 25 of the Intel log, put 0.3 m and 0.1 rad off, against the
+// place of scans [0, 51) at their odometry poses. Args: threads, and the window in dm (15, the
+// window after a short path; 50, the largest, after a long one).
 void BM_PlaceMatcherSearch(benchmark::State& state) {
   const Dataset* log = IntelOrSkip(state);
   if (!log) return;
   constexpr std::size_t kPlace = 51, kScan = 25;
   const LoopDetectionParams params;
+  const double window = 0.1 * static_cast<double>(state.range(1));
   std::vector<Pose2> poses;
   for (std::size_t i = 0; i < kPlace; ++i) poses.push_back(log->scans[i].odometry);
-  const PlaceMatcher place(std::span(log->scans).first(kPlace), poses, 0.05, 0.1,
-                           params.match_window);
+  const PlaceMatcher place(std::span(log->scans).first(kPlace), poses, 0.05, 0.1, window);
   const std::vector<Eigen::Vector2d> points = ReturnPoints(log->scans[kScan]);
   const Pose2 start = poses[kScan] * Pose2(0.3, -0.2, 0.1);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(static_cast<int>(state.range(0)));
   for (auto _ : state) {
-    benchmark::DoNotOptimize(place.Search(points, start, params.match_window,
-                                          params.match_window_theta, params.rival_distance));
+    benchmark::DoNotOptimize(
+        place.Search(points, start, window, params.match_window_theta, params.rival_distance));
   }
+  omp_set_num_threads(threads);
 }
-BENCHMARK(BM_PlaceMatcherSearch)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PlaceMatcherSearch)
+    ->Args({1, 15})
+    ->Args({2, 15})
+    ->Args({1, 50})
+    ->Args({2, 50})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 // The local search over the first 2000 scans of the Intel log, on OMP_NUM_THREADS threads.
 void BM_LocalSearchIntel(benchmark::State& state) {

@@ -9,6 +9,11 @@
 namespace evoslam {
 namespace {
 
+// Point loads a lattice must make before its headings are shared out among threads: the coarse
+// lattice of a loop check (3 to 40 million) is, the finer ones around its best (about 10^5,
+// tens of microseconds) are not.
+constexpr std::size_t kMinParallelWork = std::size_t{1} << 20;
+
 // The covariance of a (2 half_steps + 1)^2 lattice's translations (row by row from the lowest
 // y), each weighted by exp((score - best) / score_scale).
 Eigen::Matrix2d Spread(const std::vector<double>& scores, double best, double step, int half_steps,
@@ -155,22 +160,43 @@ PlaceMatcher::Match PlaceMatcher::Lattice(std::span<const Eigen::Vector2d> point
   // The best score per translation over all headings, for the rivals.
   const bool rivals = rival_distance > 0.0;
   const int side = 2 * half_steps + 1;
-  std::vector<double> best_at(rivals ? static_cast<std::size_t>(side * side) : 0, -1.0);
-  std::vector<double> scores;
-  Match best{center, -1.0};
-  for (int t = -half_steps_theta; t <= half_steps_theta; ++t) {
-    const double theta = center.theta() + t * step_theta;
-    ScoreTranslations(used, center, theta, step, half_steps, scores);
-    for (int iy = -half_steps; iy <= half_steps; ++iy) {
-      for (int ix = -half_steps; ix <= half_steps; ++ix) {
-        const auto at = static_cast<std::size_t>((iy + half_steps) * side + ix + half_steps);
-        const double score = scores[at];
-        if (score > best.score) {
-          best = {Pose2(center.x() + ix * step, center.y() + iy * step, theta), score};
+  const auto cells = static_cast<std::size_t>(side) * static_cast<std::size_t>(side);
+  const int headings = 2 * half_steps_theta + 1;
+  std::vector<double> best_at(rivals ? cells : 0, -1.0);
+  // Each heading's best, the first in lattice order on a tie; picked in heading order below, so
+  // the result does not depend on how the headings were shared out among threads.
+  std::vector<Match> heading_best(static_cast<std::size_t>(headings), Match{center, -1.0});
+  const bool parallel =
+      used.size() * cells * static_cast<std::size_t>(headings) >= kMinParallelWork;
+#pragma omp parallel if (parallel)
+  {
+    std::vector<double> scores;
+    std::vector<double> own_best_at(best_at.size(), -1.0);
+#pragma omp for schedule(static)
+    for (int h = 0; h < headings; ++h) {
+      const double theta = center.theta() + (h - half_steps_theta) * step_theta;
+      ScoreTranslations(used, center, theta, step, half_steps, scores);
+      Match& best = heading_best[static_cast<std::size_t>(h)];
+      for (int iy = -half_steps; iy <= half_steps; ++iy) {
+        for (int ix = -half_steps; ix <= half_steps; ++ix) {
+          const auto at = static_cast<std::size_t>((iy + half_steps) * side + ix + half_steps);
+          const double score = scores[at];
+          if (score > best.score) {
+            best = {Pose2(center.x() + ix * step, center.y() + iy * step, theta), score};
+          }
+          if (rivals) own_best_at[at] = std::max(own_best_at[at], score);
         }
-        if (rivals) best_at[at] = std::max(best_at[at], score);
       }
     }
+    // A maximum is exact whatever the order the threads merge in.
+#pragma omp critical
+    for (std::size_t at = 0; at < best_at.size(); ++at) {
+      best_at[at] = std::max(best_at[at], own_best_at[at]);
+    }
+  }
+  Match best{center, -1.0};
+  for (const Match& m : heading_best) {
+    if (m.score > best.score) best = m;
   }
   if (rivals) {
     double rival = 0.0;

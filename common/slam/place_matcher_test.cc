@@ -1,6 +1,7 @@
 #include "common/slam/place_matcher.h"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -102,6 +103,30 @@ TEST(PlaceMatcherTest, TheSpreadIsLongAlongACorridorAndShortInAnOffice) {
       ReturnPoints(there), *there.true_pose * Pose2(0.6, -0.4, 0.2), 1.0, 0.3, 0.3, 0.02);
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(pinned.spread);
   EXPECT_LT(eigen.eigenvalues().maxCoeff(), 0.002);
+}
+
+// The coarse lattice's headings are shared out among threads; the match must not depend on how.
+TEST(PlaceMatcherTest, TheMatchIsTheSameBitsWhateverTheThreadCount) {
+  const Dataset d = Drive();
+  const PlaceMatcher place = PlaceOf(d);
+  const LaserScan& scan = d.scans[10];
+  const int saved = omp_get_max_threads();
+  std::vector<PlaceMatcher::Match> matches;
+  for (int threads : {1, 2, 3}) {
+    omp_set_num_threads(threads);
+    // A 1.5 m window: enough work for the coarse lattice to be shared out.
+    matches.push_back(place.Search(ReturnPoints(scan), *scan.true_pose * Pose2(0.6, -0.4, 0.2), 1.5,
+                                   0.3, 0.3, 0.02));
+  }
+  omp_set_num_threads(saved);
+  for (const PlaceMatcher::Match& m : matches) {
+    EXPECT_EQ(m.pose.translation(), matches[0].pose.translation());
+    EXPECT_EQ(m.pose.theta(), matches[0].pose.theta());
+    EXPECT_EQ(m.score, matches[0].score);
+    EXPECT_EQ(m.distinctness, matches[0].distinctness);
+    EXPECT_EQ(m.spread, matches[0].spread);
+  }
+  EXPECT_GT(matches[0].score, 0.8);
 }
 
 TEST(PlaceMatcherTest, ScoresAreMeanLikelihoods) {
