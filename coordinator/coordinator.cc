@@ -5,6 +5,7 @@
 #include <sys/eventfd.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -145,7 +146,9 @@ class Coordinator::Impl {
   std::mutex jobs_mutex_;
   std::condition_variable jobs_cv_;
   std::deque<std::string> runnable_;
-  std::set<std::string> touched_;          // jobs whose status changed since the last flush
+  std::set<std::string> touched_;  // jobs whose status changed since the last flush
+  // OpenMP threads per job thread: what the process had when the coordinator started.
+  const int job_omp_threads_ = std::max(1, omp_get_max_threads());
   std::vector<std::jthread> job_threads_;  // last: they stop before what they use goes
 };
 
@@ -620,9 +623,9 @@ void Coordinator::Impl::Touch(const std::string& job_id) {
 }
 
 void Coordinator::Impl::JobLoop(const std::stop_token& stop) {
-  // The little a job thread computes itself (a scan's final pose) is not worth a team of OpenMP
-  // threads, whose spinning would take the cores from the workers.
-  omp_set_num_threads(1);
+  // A job's own heavy steps (a SLAM loop check's coarse match) run while its workers wait, so
+  // they may use the host's cores; the small ones stay on one thread by their own thresholds.
+  omp_set_num_threads(job_omp_threads_);
   for (;;) {
     std::string job_id;
     {
