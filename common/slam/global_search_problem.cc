@@ -25,6 +25,12 @@ void ValidateGlobalSearchParams(const GlobalSearchParams& p) {
   if (p.beam_stride == 0) throw Error("global search: the beam stride must be >= 1");
 }
 
+double WeightedLength(const Eigen::Vector2d& miss, double heading, const Eigen::Matrix2d& weight) {
+  if (weight.isIdentity(0.0)) return miss.norm();
+  const Eigen::Vector2d local = Eigen::Rotation2Dd(-heading) * miss;
+  return std::sqrt(std::max(0.0, local.dot(weight * local)));
+}
+
 GlobalSearchProblem::GlobalSearchProblem(std::span<const LaserScan> scans,
                                          std::span<const Pose2> poses, std::size_t first,
                                          std::size_t last, const HitCountGrid& base,
@@ -140,15 +146,8 @@ void GlobalSearchProblem::Score(const Eigen::Ref<const Eigen::VectorXd>& x, Scra
     const Pose2 earlier =
         loop_->earlier < first_ ? loop_earlier_pose_ : poses[loop_->earlier - first_];
     const Pose2 expected = earlier * loop_->relative;
-    const Eigen::Vector2d miss =
-        poses[loop_->later - first_].translation() - expected.translation();
-    if (loop_->weight.isIdentity(0.0)) {
-      distance = miss.norm();
-    } else {
-      // In the earlier scan's frame, where the match's weight was taken.
-      const Eigen::Vector2d local = Eigen::Rotation2Dd(-earlier.theta()) * miss;
-      distance = std::sqrt(std::max(0.0, local.dot(loop_->weight * local)));
-    }
+    distance = WeightedLength(poses[loop_->later - first_].translation() - expected.translation(),
+                              earlier.theta(), loop_->weight);
   }
   fitness[1] = params_.w1 * conflicts + params_.w2 * distance;
 }

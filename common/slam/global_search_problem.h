@@ -42,6 +42,12 @@ struct LoopConstraint {
   Eigen::Matrix2d weight = Eigen::Matrix2d::Identity();
 };
 
+// How long a loop's `weight` finds a miss d (world frame) in the frame of a pose at `heading`:
+// sqrt(d' W d), d turned into that frame. The identity gives d's plain length, computed as such,
+// so that 002's distance comes out the same bits. Eq. 7 and the loop detector's fit test both
+// measure a loop's miss with it.
+double WeightedLength(const Eigen::Vector2d& miss, double heading, const Eigen::Matrix2d& weight);
+
 // The global search's problem over the poses of scans [first, last). The steps between them
 // are split into L partitions; a candidate holds per partition and axis an error and the mean of
 // a Gaussian (genes: L columns of (dx, mu_x, dy, mu_y, dtheta, mu_theta)), the error being spread

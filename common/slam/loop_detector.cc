@@ -56,12 +56,10 @@ Eigen::Matrix2d LoopWeight(const Eigen::Matrix2d& spread, double heading) {
   return smallest / (a * c - b * b) * weight;
 }
 
-bool FitsWhereItIs(const Pose2& shift, const Eigen::Matrix2d& weight,
+bool FitsWhereItIs(const Pose2& shift, double heading, const Eigen::Matrix2d& weight,
                    const LoopDetectionParams& params) {
-  const Eigen::Vector2d t = shift.translation();
-  const double miss =
-      weight.isIdentity(0.0) ? t.norm() : std::sqrt(std::max(0.0, t.dot(weight * t)));
-  return miss <= params.fit_tolerance && std::abs(shift.theta()) <= params.fit_tolerance_theta;
+  return WeightedLength(shift.translation(), heading, weight) <= params.fit_tolerance &&
+         std::abs(shift.theta()) <= params.fit_tolerance_theta;
 }
 
 double MatchWindow(const LoopDetectionParams& params, double travelled) {
@@ -115,13 +113,16 @@ std::optional<LoopClosure> DetectLoop(std::span<const LaserScan> scans,
     return std::nullopt;
   }
 
-  const bool weighted = params.spread_score > 0.0;
-  const Pose2 shift = poses[current].inverse() * match.pose;
-  const Eigen::Matrix2d weight_here = weighted ? LoopWeight(match.spread, poses[current].theta())
-                                               : Eigen::Matrix2d(Eigen::Matrix2d::Identity());
-  if (FitsWhereItIs(shift, weight_here, params)) return std::nullopt;
   LoopConstraint constraint{*earlier, current, poses[*earlier].inverse() * match.pose};
-  if (weighted) constraint.weight = LoopWeight(match.spread, poses[*earlier].theta());
+  if (params.spread_score > 0.0) {
+    constraint.weight = LoopWeight(match.spread, poses[*earlier].theta());
+  }
+  // The shift is in the current scan's frame; the weight, in the earlier scan's.
+  const Pose2 shift = poses[current].inverse() * match.pose;
+  if (FitsWhereItIs(shift, poses[*earlier].theta() - poses[current].theta(), constraint.weight,
+                    params)) {
+    return std::nullopt;
+  }
   return LoopClosure{constraint, match.score, match.distinctness};
 }
 

@@ -66,11 +66,11 @@ double MatchWindow(const LoopDetectionParams& params, double travelled);
 Eigen::Matrix2d LoopWeight(const Eigen::Matrix2d& spread, double heading);
 
 // Whether a scan that its match moves by `shift` (in the scan's frame) already fits where the
-// trajectory puts it: within fit_tolerance_theta, and within fit_tolerance as `weight` (in the
-// scan's frame) measures the translation, sqrt(t' W t). Measured as eq. 7 measures the loop's
-// miss, a loop that a search closed as far as its match pins it down is not found again at the
-// next check.
-bool FitsWhereItIs(const Pose2& shift, const Eigen::Matrix2d& weight,
+// trajectory puts it: within fit_tolerance_theta, and within fit_tolerance as `weight`, given in
+// a frame turned by `heading` from the scan's, measures the translation (WeightedLength).
+// Measured as eq. 7 measures the loop's miss, a loop that a search closed as far as its match
+// pins it down is not found again at the next check.
+bool FitsWhereItIs(const Pose2& shift, double heading, const Eigen::Matrix2d& weight,
                    const LoopDetectionParams& params);
 
 // A place seen twice, found by matching.

@@ -201,15 +201,18 @@ TEST(LoopWeightTest, IsTheNormalisedInverseSpreadInTheEarlierFrame) {
 TEST(FitsWhereItIsTest, MeasuresTheShiftThroughTheWeight) {
   const LoopDetectionParams params;  // 0.1 m and 0.02 rad
   const Eigen::Matrix2d same = Eigen::Matrix2d::Identity();
-  EXPECT_TRUE(FitsWhereItIs(Pose2(0.06, -0.079, 0.02), same, params));
-  EXPECT_FALSE(FitsWhereItIs(Pose2(0.07, -0.08, 0.0), same, params));
-  EXPECT_FALSE(FitsWhereItIs(Pose2(0.0, 0.0, 0.021), same, params));
+  EXPECT_TRUE(FitsWhereItIs(Pose2(0.06, -0.079, 0.02), 0.0, same, params));
+  EXPECT_FALSE(FitsWhereItIs(Pose2(0.07, -0.08, 0.0), 0.0, same, params));
+  EXPECT_FALSE(FitsWhereItIs(Pose2(0.0, 0.0, 0.021), 0.0, same, params));
   Eigen::Matrix2d loose_in_x;
   loose_in_x << 0.04, 0.0, 0.0, 1.0;
-  EXPECT_TRUE(FitsWhereItIs(Pose2(0.45, 0.0, 0.0), loose_in_x, params));  // counts as 0.09 m
-  EXPECT_FALSE(FitsWhereItIs(Pose2(0.55, 0.0, 0.0), loose_in_x, params));
-  EXPECT_FALSE(FitsWhereItIs(Pose2(0.0, 0.15, 0.0), loose_in_x, params));
-  EXPECT_FALSE(FitsWhereItIs(Pose2(0.45, 0.0, 0.03), loose_in_x, params));
+  EXPECT_TRUE(FitsWhereItIs(Pose2(0.45, 0.0, 0.0), 0.0, loose_in_x, params));  // counts as 0.09 m
+  EXPECT_FALSE(FitsWhereItIs(Pose2(0.55, 0.0, 0.0), 0.0, loose_in_x, params));
+  EXPECT_FALSE(FitsWhereItIs(Pose2(0.0, 0.15, 0.0), 0.0, loose_in_x, params));
+  EXPECT_FALSE(FitsWhereItIs(Pose2(0.45, 0.0, 0.03), 0.0, loose_in_x, params));
+  // Given in a frame turned a quarter turn from the scan's, the weight is loose along the scan's y.
+  EXPECT_TRUE(FitsWhereItIs(Pose2(0.0, 0.45, 0.0), M_PI / 2, loose_in_x, params));
+  EXPECT_FALSE(FitsWhereItIs(Pose2(0.15, 0.0, 0.0), M_PI / 2, loose_in_x, params));
 }
 
 }  // namespace
