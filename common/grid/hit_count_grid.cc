@@ -1,8 +1,10 @@
 #include "common/grid/hit_count_grid.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -93,19 +95,36 @@ std::size_t HitCountGrid::AddScan(const LaserScan& scan, const Pose2& pose, int 
 template <typename Cells>
 void HitCountGrid::CountInsertion(const Pose2& pose, std::span<const Eigen::Vector2d> points,
                                   Cells& cells, Insertion& sums) const {
-  // pose * p as Pose2 computes it, to the bit, with the cosine and sine taken once for all the
-  // points instead of once a point: a search scores thousands of points per candidate.
+  // pose * p as Pose2 computes it, and its cell as CellIndex finds it, to the bit, with the cosine
+  // and sine taken once for all the points: a search scores thousands of points per candidate.
   const double c = std::cos(pose.theta()), s = std::sin(pose.theta());
+  const auto stride = static_cast<std::uint32_t>(width_);
+  // The cells of a chunk of points first, then the set: in one loop, each point's arithmetic
+  // waited on the set's read-modify-write of the point before (measured: a fifth faster apart).
+  constexpr std::size_t kChunk = 128;
+  std::array<std::uint32_t, kChunk> chunk_cells;
   // Local sums: through the reference, every point would store to memory and reload.
   std::uint64_t inside = 0, fresh = 0;
-  for (const Eigen::Vector2d& p : points) {
-    const auto cell = CellIndex(
-        Eigen::Vector2d(pose.x() + c * p.x() - s * p.y(), pose.y() + s * p.x() + c * p.y()));
-    if (!cell) continue;
-    ++inside;
-    // Without a branch on whether the cell is new: that one mispredicts.
-    fresh += static_cast<std::uint64_t>(cells.Insert(*cell)) &
-             static_cast<std::uint64_t>(!occupied(*cell));
+  for (std::size_t begin = 0; begin < points.size(); begin += kChunk) {
+    const std::size_t end = std::min(points.size(), begin + kChunk);
+    std::size_t n = 0;
+    for (std::size_t i = begin; i < end; ++i) {
+      const Eigen::Vector2d& p = points[i];
+      const double x = (pose.x() + c * p.x() - s * p.y() - origin_.x()) / resolution_;
+      const double y = (pose.y() + s * p.x() + c * p.y() - origin_.y()) / resolution_;
+      // As in WorldToCell: in the grid exactly when the truncation is the floor; NaN is outside.
+      const bool in = x >= 0 && y >= 0 && x < width_ && y < height_;
+      // Written whether in or not, and kept only when in: no branch on the point.
+      chunk_cells[n] = static_cast<std::uint32_t>(in ? y : 0.0) * stride +
+                       static_cast<std::uint32_t>(in ? x : 0.0);
+      n += in;
+    }
+    inside += n;
+    for (std::size_t k = 0; k < n; ++k) {
+      // Without a branch on whether the cell is new: that one mispredicts.
+      fresh += static_cast<std::uint64_t>(cells.Insert(chunk_cells[k])) &
+               static_cast<std::uint64_t>(!occupied(chunk_cells[k]));
+    }
   }
   sums.inside += inside;
   sums.fresh += fresh;
