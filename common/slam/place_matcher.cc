@@ -86,6 +86,17 @@ PlaceMatcher::PlaceMatcher(std::span<const LaserScan> scans, std::span<const Pos
       }
     }
   }
+  constexpr int k = kCoarseStepCells;
+  const auto phase_width = static_cast<std::size_t>((width_ + k - 1) / k);
+  coarse_field_.assign(k * static_cast<std::size_t>(height_) * phase_width, 0.0f);
+  for (int y = 0; y < height_; ++y) {
+    for (int x = 0; x < width_; ++x) {
+      coarse_field_[(static_cast<std::size_t>(x % k * height_ + y)) * phase_width +
+                    static_cast<std::size_t>(x / k)] =
+          field_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
+                 static_cast<std::size_t>(x)];
+    }
+  }
 }
 
 double PlaceMatcher::Score(std::span<const Eigen::Vector2d> points, const Pose2& pose) const {
@@ -112,7 +123,7 @@ void PlaceMatcher::ScoreTranslations(std::span<const Eigen::Vector2d> points, co
   scores.assign(static_cast<std::size_t>(side) * static_cast<std::size_t>(side), 0.0);
   const double cells_per_step = step / resolution_;
   const auto k = static_cast<int>(std::lround(cells_per_step));
-  if (k < 1 || std::abs(cells_per_step - k) > 1e-9) {
+  if ((k != 1 && k != kCoarseStepCells) || std::abs(cells_per_step - k) > 1e-9) {
     for (int iy = -half_steps; iy <= half_steps; ++iy) {
       for (int ix = -half_steps; ix <= half_steps; ++ix) {
         scores[static_cast<std::size_t>((iy + half_steps) * side + ix + half_steps)] =
@@ -127,6 +138,8 @@ void PlaceMatcher::ScoreTranslations(std::span<const Eigen::Vector2d> points, co
   const auto floor_div = [](int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); };
   const double c = std::cos(theta), s = std::sin(theta);
   const double inv = 1.0 / resolution_;
+  const float* field = k == 1 ? field_.data() : coarse_field_.data();
+  const auto phase_width = static_cast<std::size_t>((width_ + k - 1) / k);
   for (const Eigen::Vector2d& p : points) {
     const double fx = std::floor((center.x() + c * p.x() - s * p.y() - origin_.x()) * inv);
     const double fy = std::floor((center.y() + s * p.x() + c * p.y() - origin_.y()) * inv);
@@ -136,13 +149,16 @@ void PlaceMatcher::ScoreTranslations(std::span<const Eigen::Vector2d> points, co
     const int x = static_cast<int>(fx), y = static_cast<int>(fy);
     const int ix_lo = std::max(-half_steps, -floor_div(x, k));
     const int ix_hi = std::min(half_steps, floor_div(width_ - 1 - x, k));
+    // Cell x + k ix lies at column x / k + ix of its remainder's rows.
+    const int column = floor_div(x, k);
+    const float* phase = field + static_cast<std::size_t>(x - k * column) *
+                                     static_cast<std::size_t>(height_) * phase_width;
     for (int iy = -half_steps; iy <= half_steps; ++iy) {
       const int row = y + k * iy;
       if (row < 0 || row >= height_) continue;
-      const float* cells =
-          &field_[static_cast<std::size_t>(row) * static_cast<std::size_t>(width_)];
+      const float* cells = phase + static_cast<std::size_t>(row) * phase_width;
       double* out = &scores[static_cast<std::size_t>((iy + half_steps) * side + half_steps)];
-      for (int ix = ix_lo; ix <= ix_hi; ++ix) out[ix] += cells[x + k * ix];
+      for (int ix = ix_lo; ix <= ix_hi; ++ix) out[ix] += cells[column + ix];
     }
   }
   const double n = static_cast<double>(points.size());
@@ -219,7 +235,7 @@ PlaceMatcher::Match PlaceMatcher::Search(std::span<const Eigen::Vector2d> points
                                          const Pose2& center, double window, double window_theta,
                                          double rival_distance, double spread_score) const {
   if (field_.empty() || points.empty()) return {center, 0.0};
-  const double step = 2.0 * resolution_;
+  const double step = kCoarseStepCells * resolution_;
   const double step_theta = 0.0175;  // about 1 degree: a 5 m return moves 9 cm
   const Match coarse = Lattice(points, center, step, static_cast<int>(std::ceil(window / step)),
                                step_theta, static_cast<int>(std::ceil(window_theta / step_theta)),

@@ -56,10 +56,17 @@ class PlaceMatcher {
                 int half_steps, double step_theta, int half_steps_theta, int stride,
                 double rival_distance = 0.0, double spread_score = 0.0) const;
 
+  // The coarse lattice's step, in cells.
+  static constexpr int kCoarseStepCells = 2;
+
   double resolution_;
   Eigen::Vector2d origin_;
   int width_ = 0, height_ = 0;
   std::vector<float> field_;  // row-major
+  // The field again, its columns grouped by their remainder modulo kCoarseStepCells (all rows of
+  // remainder 0, then of 1, ...): along a row of the coarse lattice a point's cells lie side by
+  // side here, which the vectoriser loads whole where the field would need a gather.
+  std::vector<float> coarse_field_;
 };
 
 }  // namespace evoslam
