@@ -5,8 +5,10 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "common/util/error.h"
 
@@ -105,6 +107,11 @@ void HitCountGrid::CountInsertion(const Pose2& pose, std::span<const Eigen::Vect
   std::array<std::uint32_t, kChunk> chunk_cells;
   // Local sums: through the reference, every point would store to memory and reload.
   std::uint64_t inside = 0, fresh = 0;
+  // Neighbouring returns near the laser often share a cell, and a repeat of the cell before needs
+  // no look-up in the set. That pays for a hash set's look-up (the local search: 15 % less time),
+  // not for a bit set's (the global search, which also takes one return in two: 8 % more).
+  constexpr bool kSkipRepeats = std::is_same_v<Cells, CellSet>;
+  std::uint32_t last = std::numeric_limits<std::uint32_t>::max();  // no cell has this index
   for (std::size_t begin = 0; begin < points.size(); begin += kChunk) {
     const std::size_t end = std::min(points.size(), begin + kChunk);
     std::size_t n = 0;
@@ -114,12 +121,18 @@ void HitCountGrid::CountInsertion(const Pose2& pose, std::span<const Eigen::Vect
       const double y = (pose.y() + s * p.x() + c * p.y() - origin_.y()) / resolution_;
       // As in WorldToCell: in the grid exactly when the truncation is the floor; NaN is outside.
       const bool in = x >= 0 && y >= 0 && x < width_ && y < height_;
-      // Written whether in or not, and kept only when in: no branch on the point.
-      chunk_cells[n] = static_cast<std::uint32_t>(in ? y : 0.0) * stride +
-                       static_cast<std::uint32_t>(in ? x : 0.0);
-      n += in;
+      // Written whether in or not, kept only when in (and not a repeat): no branch on the point.
+      const std::uint32_t cell = static_cast<std::uint32_t>(in ? y : 0.0) * stride +
+                                 static_cast<std::uint32_t>(in ? x : 0.0);
+      chunk_cells[n] = cell;
+      inside += in;
+      if constexpr (kSkipRepeats) {
+        n += in & (cell != last);
+        last = in ? cell : last;
+      } else {
+        n += in;
+      }
     }
-    inside += n;
     for (std::size_t k = 0; k < n; ++k) {
       // Without a branch on whether the cell is new: that one mispredicts.
       fresh += static_cast<std::uint64_t>(cells.Insert(chunk_cells[k])) &
