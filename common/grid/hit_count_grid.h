@@ -9,6 +9,7 @@
 
 #include "common/sensor/laser_scan.h"
 #include "common/transform/pose2.h"
+#include "common/transform/pose2_frame.h"
 
 namespace evoslam {
 
@@ -151,7 +152,7 @@ class HitCountGrid {
     std::uint64_t fresh = 0;
   };
   template <typename Cells>
-  void CountInsertion(const Pose2& pose, std::span<const Eigen::Vector2d> points, Cells& cells,
+  void CountInsertion(const Pose2Frame& pose, std::span<const Eigen::Vector2d> points, Cells& cells,
                       Insertion& sums) const;
 
   std::uint64_t total() const { return total_; }        // the sum of all counts

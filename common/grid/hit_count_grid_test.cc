@@ -130,8 +130,8 @@ TYPED_TEST(CellSetsTest, CountingAnInsertionGivesWhatAddingTheScansWouldChange) 
   const std::vector<Eigen::Vector2d> points = ReturnPoints(scan);
   TypeParam cells = CellsFor<TypeParam>(80 * 60);
   HitCountGrid::Insertion sums;
-  grid.CountInsertion(a, points, cells, sums);
-  grid.CountInsertion(b, points, cells, sums);
+  grid.CountInsertion(Pose2Frame(a), points, cells, sums);
+  grid.CountInsertion(Pose2Frame(b), points, cells, sums);
   HitCountGrid added = grid;
   const std::size_t outside = added.AddScan(scan, a) + added.AddScan(scan, b);
   EXPECT_GT(outside, 0u);

@@ -47,9 +47,9 @@ GlobalSearchProblem::GlobalSearchProblem(std::span<const LaserScan> scans,
     throw Error("global search: the loop must end inside the scans searched, after it starts");
   }
   steps_begin_ = std::max<std::size_t>(first, 1);
-  anchor_ = poses[steps_begin_ - 1];
+  anchor_ = Pose2Frame(poses[steps_begin_ - 1]);
   for (std::size_t j = steps_begin_; j < last; ++j)
-    increments_.push_back(poses[j - 1].inverse() * poses[j]);
+    increments_.emplace_back(poses[j - 1].inverse() * poses[j]);
   const std::size_t steps = increments_.size();
   const std::size_t partitions = std::max<std::size_t>(1, std::min(params.partitions, steps));
   for (std::size_t i = 0; i <= partitions; ++i) bounds_.push_back(i * steps / partitions);
@@ -58,7 +58,7 @@ GlobalSearchProblem::GlobalSearchProblem(std::span<const LaserScan> scans,
     std::vector<Eigen::Vector2d>& used = returns_.emplace_back();
     for (std::size_t i = 0; i < all.size(); i += params.beam_stride) used.push_back(all[i]);
   }
-  if (loop && loop->earlier < first) loop_earlier_pose_ = poses[loop->earlier];
+  if (loop && loop->earlier < first) loop_earlier_pose_ = Pose2Frame(poses[loop->earlier]);
   const auto n = static_cast<Eigen::Index>(partitions * kGenesPerColumn);
   lower_.resize(n);
   upper_.resize(n);
@@ -81,17 +81,21 @@ Eigen::VectorXd GlobalSearchProblem::Identity() const {
 
 std::vector<Pose2> GlobalSearchProblem::Apply(const Eigen::Ref<const Eigen::VectorXd>& x) const {
   std::vector<double> weights;
+  std::vector<Pose2Frame> frames;
+  Apply(x, weights, frames);
   std::vector<Pose2> poses;
-  Apply(x, weights, poses);
+  for (const Pose2Frame& frame : frames) poses.push_back(frame.pose());
   return poses;
 }
 
 void GlobalSearchProblem::Apply(const Eigen::Ref<const Eigen::VectorXd>& x,
-                                std::vector<double>& weights, std::vector<Pose2>& poses) const {
+                                std::vector<double>& weights,
+                                std::vector<Pose2Frame>& poses) const {
   poses.clear();
   poses.reserve(last_ - first_);
   if (first_ < steps_begin_) poses.push_back(anchor_);  // scan 0 stays where it is
-  Pose2 pose = anchor_;
+  // Each pose's cosine and sine serve twice: to compose the next step, and to score its scan.
+  Pose2Frame pose = anchor_;
   for (std::size_t i = 0; i + 1 < bounds_.size(); ++i) {
     const std::size_t b = bounds_[i], e = bounds_[i + 1];
     const double n = static_cast<double>(e - b);
@@ -116,7 +120,7 @@ void GlobalSearchProblem::Apply(const Eigen::Ref<const Eigen::VectorXd>& x,
       for (int axis = 0; axis < 3; ++axis) {
         error(axis) = weight_sum(axis) > 0 ? gene(axis, 0) * weight[axis] / weight_sum(axis) : 0.0;
       }
-      pose = pose * (increments_[j] * Pose2(error(0), error(1), error(2)));
+      pose = Pose2Frame(pose * (increments_[j] * Pose2(error(0), error(1), error(2))));
       poses.push_back(pose);
     }
   }
@@ -125,7 +129,7 @@ void GlobalSearchProblem::Apply(const Eigen::Ref<const Eigen::VectorXd>& x,
 void GlobalSearchProblem::Score(const Eigen::Ref<const Eigen::VectorXd>& x, Scratch& scratch,
                                 double* fitness) const {
   Apply(x, scratch.weights, scratch.poses);
-  const std::vector<Pose2>& poses = scratch.poses;
+  const std::vector<Pose2Frame>& poses = scratch.poses;
   GridCellSet& cells = scratch.cells;
   cells.Clear();
   HitCountGrid::Insertion added;
@@ -137,17 +141,18 @@ void GlobalSearchProblem::Score(const Eigen::Ref<const Eigen::VectorXd>& x, Scra
 
   // Eq. 7: path cells on obstacles, and the loop's two observations of one place.
   double conflicts = 0.0;
-  for (const Pose2& pose : poses) {
-    const auto c = base_.CellIndex(pose.translation());
+  for (const Pose2Frame& pose : poses) {
+    const auto c = base_.CellIndex(pose.pose().translation());
     if (c) conflicts += base_.occupied(*c) || cells.Contains(*c);
   }
   double distance = 0.0;
   if (loop_) {
-    const Pose2 earlier =
+    const Pose2Frame& earlier =
         loop_->earlier < first_ ? loop_earlier_pose_ : poses[loop_->earlier - first_];
     const Pose2 expected = earlier * loop_->relative;
-    distance = WeightedLength(poses[loop_->later - first_].translation() - expected.translation(),
-                              earlier.theta(), loop_->weight);
+    distance =
+        WeightedLength(poses[loop_->later - first_].pose().translation() - expected.translation(),
+                       earlier.pose().theta(), loop_->weight);
   }
   fitness[1] = params_.w1 * conflicts + params_.w2 * distance;
 }

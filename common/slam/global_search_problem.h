@@ -12,6 +12,7 @@
 #include "common/optim/problem.h"
 #include "common/sensor/laser_scan.h"
 #include "common/transform/pose2.h"
+#include "common/transform/pose2_frame.h"
 
 namespace evoslam {
 
@@ -83,24 +84,24 @@ class GlobalSearchProblem : public Problem {
  private:
   // A thread's working memory, made once a batch rather than once a candidate.
   struct Scratch {
-    GridCellSet cells;            // the cells the stretch's end points fall in
-    std::vector<double> weights;  // eq. 5's weights of a partition's steps, per axis
-    std::vector<Pose2> poses;     // the candidate's corrected poses
+    GridCellSet cells;              // the cells the stretch's end points fall in
+    std::vector<double> weights;    // eq. 5's weights of a partition's steps, per axis
+    std::vector<Pose2Frame> poses;  // the candidate's corrected poses
   };
   void Apply(const Eigen::Ref<const Eigen::VectorXd>& x, std::vector<double>& weights,
-             std::vector<Pose2>& poses) const;
+             std::vector<Pose2Frame>& poses) const;
   void Score(const Eigen::Ref<const Eigen::VectorXd>& x, Scratch& scratch, double* fitness) const;
 
   const HitCountGrid& base_;
   GlobalSearchParams params_;
   std::optional<LoopConstraint> loop_;
   std::size_t first_, last_;
-  std::size_t steps_begin_;          // the first corrected step
-  Pose2 anchor_;                     // the pose before steps_begin_
-  std::vector<Pose2> increments_;    // step j's motion, j in [steps_begin_, last)
-  std::vector<std::size_t> bounds_;  // partition i covers steps [bounds_[i], bounds_[i + 1])
+  std::size_t steps_begin_;             // the first corrected step
+  Pose2Frame anchor_;                   // the pose before steps_begin_
+  std::vector<Pose2Frame> increments_;  // step j's motion, j in [steps_begin_, last)
+  std::vector<std::size_t> bounds_;     // partition i covers steps [bounds_[i], bounds_[i + 1])
   std::vector<std::vector<Eigen::Vector2d>> returns_;  // scan first + k's end points, laser frame
-  Pose2 loop_earlier_pose_;  // the loop's earlier pose, when it lies before first
+  Pose2Frame loop_earlier_pose_;  // the loop's earlier pose, when it lies before first
   Eigen::VectorXd lower_, upper_;
 };
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "common/transform/pose2_frame.h"
 #include "common/util/error.h"
 
 namespace evoslam {
@@ -48,7 +49,8 @@ PlaceMatcher::PlaceMatcher(std::span<const LaserScan> scans, std::span<const Pos
   }
   std::vector<Eigen::Vector2d> hits;
   for (std::size_t k = 0; k < scans.size(); ++k) {
-    for (const Eigen::Vector2d& p : ReturnPoints(scans[k])) hits.push_back(poses[k] * p);
+    const Pose2Frame frame(poses[k]);
+    for (const Eigen::Vector2d& p : ReturnPoints(scans[k])) hits.push_back(frame * p);
   }
   if (hits.empty()) return;
   Eigen::Vector2d lo = hits.front(), hi = hits.front();

@@ -42,7 +42,7 @@ StepCorrectionProblem::StepCorrectionProblem(const HitCountGrid& map, const Lase
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector2d hi = -lo;
   for (const Eigen::Vector2d& p : returns_) {
-    const Eigen::Vector2d w = predicted * p;
+    const Eigen::Vector2d w = predicted_ * p;
     lo = lo.cwiseMin(w);
     hi = hi.cwiseMax(w);
   }
@@ -68,7 +68,7 @@ double StepCorrectionProblem::Score(const Eigen::Ref<const Eigen::VectorXd>& err
                                     CellSet& cells) const {
   cells.Clear();
   HitCountGrid::Insertion added;  // fresh: the cells the scan makes occupied
-  map_.CountInsertion(Corrected(error), returns_, cells, added);
+  map_.CountInsertion(Pose2Frame(Corrected(error)), returns_, cells, added);
   const double occupied = static_cast<double>(window_.occupied + added.fresh);
   if (fitness_ == LocalFitness::kEval1) return occupied;
   const double total = static_cast<double>(window_.total + added.inside);

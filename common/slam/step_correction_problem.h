@@ -10,6 +10,7 @@
 #include "common/optim/problem.h"
 #include "common/sensor/laser_scan.h"
 #include "common/transform/pose2.h"
+#include "common/transform/pose2_frame.h"
 
 namespace evoslam {
 
@@ -47,7 +48,7 @@ class StepCorrectionProblem : public Problem {
   double Score(const Eigen::Ref<const Eigen::VectorXd>& error, CellSet& cells) const;
 
   const HitCountGrid& map_;
-  Pose2 predicted_;
+  Pose2Frame predicted_;
   LocalFitness fitness_;
   std::vector<Eigen::Vector2d> returns_;  // the scan's end points in the laser's frame
   HitCountGrid::WindowSums window_;       // the part of the map being updated, before the scan

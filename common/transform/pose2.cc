@@ -4,6 +4,8 @@
 #include <numbers>
 #include <ostream>
 
+#include "common/transform/pose2_frame.h"
+
 namespace evoslam {
 
 double WrapAngle(double angle) {
@@ -21,17 +23,10 @@ Eigen::Matrix2d Pose2::rotation() const {
   return r;
 }
 
-Pose2 Pose2::operator*(const Pose2& other) const {
-  const double c = std::cos(theta_);
-  const double s = std::sin(theta_);
-  return {x_ + c * other.x_ - s * other.y_, y_ + s * other.x_ + c * other.y_,
-          theta_ + other.theta_};
-}
+Pose2 Pose2::operator*(const Pose2& other) const { return Pose2Frame(*this) * other; }
 
 Eigen::Vector2d Pose2::operator*(const Eigen::Vector2d& point) const {
-  const double c = std::cos(theta_);
-  const double s = std::sin(theta_);
-  return {x_ + c * point.x() - s * point.y(), y_ + s * point.x() + c * point.y()};
+  return Pose2Frame(*this) * point;
 }
 
 Pose2 Pose2::inverse() const {
