@@ -143,7 +143,7 @@ class HitCountGrid {
   // (or takes them back with delta -1). Returns how many end points fell outside the grid.
   std::size_t AddScan(const LaserScan& scan, const Pose2& pose, int delta = 1);
 
-  // What adding `points` seen from `pose` would add, the grid left as it is: to `inside` the
+  // What adding `points` seen from `frame` would add, the grid left as it is: to `inside` the
   // points that fall in it, to `fresh` the cells they would make occupied. `cells` (a CellSet or
   // a GridCellSet) receives the cells hit, and a cell already there is not counted again, so that
   // several scans can be counted as one insertion (clear it between insertions).
@@ -152,8 +152,8 @@ class HitCountGrid {
     std::uint64_t fresh = 0;
   };
   template <typename Cells>
-  void CountInsertion(const Pose2Frame& pose, std::span<const Eigen::Vector2d> points, Cells& cells,
-                      Insertion& sums) const;
+  void CountInsertion(const Pose2Frame& frame, std::span<const Eigen::Vector2d> points,
+                      Cells& cells, Insertion& sums) const;
 
   std::uint64_t total() const { return total_; }        // the sum of all counts
   std::uint64_t occupied() const { return occupied_; }  // cells whose count is above zero

@@ -93,7 +93,7 @@ PlaceMatcher::PlaceMatcher(std::span<const LaserScan> scans, std::span<const Pos
   coarse_field_.assign(k * static_cast<std::size_t>(height_) * phase_width, 0.0f);
   for (int y = 0; y < height_; ++y) {
     for (int x = 0; x < width_; ++x) {
-      coarse_field_[(static_cast<std::size_t>(x % k * height_ + y)) * phase_width +
+      coarse_field_[static_cast<std::size_t>((x % k) * height_ + y) * phase_width +
                     static_cast<std::size_t>(x / k)] =
           field_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
                  static_cast<std::size_t>(x)];

@@ -24,8 +24,9 @@ class PlaceMatcher {
   double Score(std::span<const Eigen::Vector2d> points, const Pose2& pose) const;
 
   // Score at every translation of a (2 half_steps + 1)^2 lattice of `step` metres around
-  // `center`, at heading `theta`, into `scores` row by row from the lowest y. A step of a whole
-  // number of cells takes a shortcut: each point's cell is found once, not once a translation.
+  // `center`, at heading `theta`, into `scores` row by row from the lowest y. A step of one cell
+  // or of two (the coarse lattice's) takes a shortcut: each point's cell is found once, not once a
+  // translation.
   void ScoreTranslations(std::span<const Eigen::Vector2d> points, const Pose2& center, double theta,
                          double step, int half_steps, std::vector<double>& scores) const;
 
