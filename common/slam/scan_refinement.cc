@@ -1,0 +1,117 @@
+#include "common/slam/scan_refinement.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+#include "common/transform/pose2_frame.h"
+#include "common/util/error.h"
+
+namespace evoslam {
+namespace {
+
+// An eigenvalue of the normal matrix this small beside the largest counts as a direction the
+// returns do not constrain: rounding, not geometry.
+constexpr double kUnconstrained = 1e-9;
+
+// The sums of one Gauss-Newton step at a pose.
+struct Normal {
+  double cost = 0.0;  // sum of squared residuals
+  Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d g = Eigen::Vector3d::Zero();
+};
+
+Normal NormalEquations(const HitCountGrid& map, std::span<const Eigen::Vector2d> returns,
+                       const Pose2& pose) {
+  const Pose2Frame frame(pose);
+  Normal n;
+  for (const Eigen::Vector2d& p : returns) {
+    const Eigen::Vector2d q = frame * p;
+    const auto s = SampleOccupancy(map, q);
+    if (!s) continue;
+    const double r = 1.0 - s->value;
+    const Eigen::Vector2d arm = q - pose.translation();
+    const Eigen::Vector3d j(s->gradient.x(), s->gradient.y(),
+                            s->gradient.y() * arm.x() - s->gradient.x() * arm.y());
+    n.cost += r * r;
+    n.h.noalias() += j * j.transpose();
+    n.g.noalias() += j * r;
+  }
+  return n;
+}
+
+}  // namespace
+
+void ValidateScanRefinementParams(const ScanRefinementParams& p) {
+  if (p.iterations > 1000) throw Error("scan refinement: at most 1000 iterations");
+  if (!(p.max_shift_cells >= 0.0) || !std::isfinite(p.max_shift_cells))
+    throw Error("scan refinement: the largest shift must be finite and not negative");
+  if (!(p.max_turn >= 0.0) || !std::isfinite(p.max_turn))
+    throw Error("scan refinement: the largest turn must be finite and not negative");
+}
+
+std::optional<OccupancySample> SampleOccupancy(const HitCountGrid& map,
+                                               const Eigen::Vector2d& point) {
+  const Eigen::Vector2d u = (point - map.origin()) / map.resolution() - Eigen::Vector2d(0.5, 0.5);
+  if (!(u.x() >= 0.0 && u.y() >= 0.0 && u.x() < map.width() - 1 && u.y() < map.height() - 1)) {
+    return std::nullopt;
+  }
+  const int x = static_cast<int>(u.x()), y = static_cast<int>(u.y());
+  const double fx = u.x() - x, fy = u.y() - y;
+  const std::size_t i00 = static_cast<std::size_t>(y) * static_cast<std::size_t>(map.width()) +
+                          static_cast<std::size_t>(x);
+  const std::size_t i01 = i00 + static_cast<std::size_t>(map.width());
+  const double m00 = map.occupied(i00), m10 = map.occupied(i00 + 1);
+  const double m01 = map.occupied(i01), m11 = map.occupied(i01 + 1);
+  OccupancySample s;
+  s.value = (1 - fy) * ((1 - fx) * m00 + fx * m10) + fy * ((1 - fx) * m01 + fx * m11);
+  s.gradient = Eigen::Vector2d((1 - fy) * (m10 - m00) + fy * (m11 - m01),
+                               (1 - fx) * (m01 - m00) + fx * (m11 - m10)) /
+               map.resolution();
+  return s;
+}
+
+Pose2 RefineScanPose(const HitCountGrid& map, std::span<const Eigen::Vector2d> returns,
+                     const Pose2& start, const ScanRefinementParams& params) {
+  // The offset from `start` is kept apart from the pose, whose heading wraps at pi.
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  const auto moved = [&start](const Eigen::Vector3d& d) {
+    return Pose2(start.x() + d.x(), start.y() + d.y(), start.theta() + d.z());
+  };
+  // The heading is scaled by the returns' mean range, so that all three coordinates measure how
+  // far the end points move and the normal matrix's eigenvalues compare.
+  double range = 0.0;
+  for (const Eigen::Vector2d& p : returns) range += p.norm();
+  if (returns.empty() || !(range > 0.0)) return start;
+  const Eigen::Vector3d scale(1.0, 1.0, static_cast<double>(returns.size()) / range);
+  const double max_shift = params.max_shift_cells * map.resolution();
+  Normal at = NormalEquations(map, returns, start);
+  for (std::size_t it = 0; it < params.iterations; ++it) {
+    const Eigen::Matrix3d h = scale.asDiagonal() * at.h * scale.asDiagonal();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(h);
+    if (eigen.info() != Eigen::Success) break;
+    const Eigen::Vector3d& values = eigen.eigenvalues();  // ascending
+    if (!(values(2) > 0.0)) break;
+    // The step solves the normal equations in the directions the returns constrain; along one
+    // they do not (two parallel walls and nothing else), it stays 0 rather than divide by 0.
+    Eigen::Vector3d step = Eigen::Vector3d::Zero();
+    const Eigen::Vector3d g = scale.asDiagonal() * at.g;
+    for (int k = 0; k < 3; ++k) {
+      if (values(k) > kUnconstrained * values(2)) {
+        step += eigen.eigenvectors().col(k) * (eigen.eigenvectors().col(k).dot(g) / values(k));
+      }
+    }
+    Eigen::Vector3d next = offset + scale.asDiagonal() * step;
+    if (!next.allFinite()) break;
+    const double shift = next.head<2>().norm();
+    if (shift > max_shift) next.head<2>() *= max_shift / shift;
+    next.z() = std::clamp(next.z(), -params.max_turn, params.max_turn);
+    const Normal there = NormalEquations(map, returns, moved(next));
+    if (!(there.cost < at.cost)) break;
+    offset = next;
+    at = there;
+  }
+  return moved(offset);
+}
+
+}  // namespace evoslam

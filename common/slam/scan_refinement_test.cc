@@ -1,0 +1,148 @@
+#include "common/slam/scan_refinement.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <vector>
+
+#include "common/localization/test_scenes.h"
+#include "common/mapping/line_map.h"
+#include "common/sensor/laser_scan.h"
+#include "common/util/error.h"
+
+namespace evoslam {
+namespace {
+
+// 5 cm cells from (-1, -1); BoxRoom spans x in [0, 6], y in [0, 8].
+HitCountGrid RoomMap() {
+  HitCountGrid map(0.05, Eigen::Vector2d(-1.0, -1.0), 180, 200);
+  const LineMap room = testing::BoxRoom();
+  for (int i = 0; i < 8; ++i) {
+    const Pose2 pose(2.2 + 0.15 * i, 1.8 + 0.2 * i, 0.3 + 0.15 * i);
+    map.AddScan(testing::ScanFrom(room, pose), pose);
+  }
+  return map;
+}
+
+double Distance(const Pose2& a, const Pose2& b) {
+  return (a.translation() - b.translation()).norm();
+}
+
+TEST(SampleOccupancyTest, InterpolatesBetweenCellCentres) {
+  HitCountGrid map(0.1, Eigen::Vector2d(0.0, 0.0), 10, 10);
+  map.Add(Eigen::Vector2d(0.55, 0.55));  // cell (5, 5), centred at (0.55, 0.55)
+  const auto centre = SampleOccupancy(map, Eigen::Vector2d(0.55, 0.55));
+  ASSERT_TRUE(centre);
+  EXPECT_DOUBLE_EQ(centre->value, 1.0);
+  // A quarter of a cell to the right and half a cell up: 0.75 * 0.5 of the occupied corner.
+  const auto off = SampleOccupancy(map, Eigen::Vector2d(0.575, 0.6));
+  ASSERT_TRUE(off);
+  EXPECT_NEAR(off->value, 0.375, 1e-12);
+  EXPECT_NEAR(off->gradient.x(), -0.5 / 0.1, 1e-9);   // falls to the right
+  EXPECT_NEAR(off->gradient.y(), -0.75 / 0.1, 1e-9);  // and upwards
+  const auto empty = SampleOccupancy(map, Eigen::Vector2d(0.2, 0.2));
+  ASSERT_TRUE(empty);
+  EXPECT_EQ(empty->value, 0.0);
+  EXPECT_EQ(empty->gradient, Eigen::Vector2d::Zero());
+  // The four cells around the point must lie in the grid.
+  EXPECT_FALSE(SampleOccupancy(map, Eigen::Vector2d(0.02, 0.5)));
+  EXPECT_FALSE(SampleOccupancy(map, Eigen::Vector2d(0.5, 0.97)));
+  EXPECT_FALSE(SampleOccupancy(map, Eigen::Vector2d(std::nan(""), 0.5)));
+}
+
+TEST(RefineScanPoseTest, MovesAPoseOffByLessThanACellTowardsTheTruth) {
+  const HitCountGrid map = RoomMap();
+  const Pose2 truth(3.1, 2.5, 0.8);
+  const std::vector<Eigen::Vector2d> returns =
+      ReturnPoints(testing::ScanFrom(testing::BoxRoom(), truth));
+  ScanRefinementParams params;
+  params.iterations = 10;
+  for (const Pose2& off :
+       {Pose2(0.03, -0.02, 0.0), Pose2(-0.025, 0.0, 0.01), Pose2(0.0, 0.035, -0.012)}) {
+    const Pose2 start = truth * off;
+    const Pose2 refined = RefineScanPose(map, returns, start, params);
+    EXPECT_LT(Distance(refined, truth), 0.5 * Distance(start, truth)) << off;
+    EXPECT_LT(std::abs(refined.theta() - truth.theta()),
+              std::max(0.003, 0.5 * std::abs(start.theta() - truth.theta())))
+        << off;
+  }
+}
+
+TEST(RefineScanPoseTest, StaysWithinItsLimitsAndLeavesAPoseWithNothingToAlignTo) {
+  const HitCountGrid map = RoomMap();
+  const Pose2 truth(3.1, 2.5, 0.8);
+  const std::vector<Eigen::Vector2d> returns =
+      ReturnPoints(testing::ScanFrom(testing::BoxRoom(), truth));
+  const Pose2 start = truth * Pose2(0.04, -0.03, 0.02);
+  ScanRefinementParams params;
+  params.iterations = 10;
+  params.max_shift_cells = 0.2;  // 1 cm
+  params.max_turn = 0.004;
+  const Pose2 refined = RefineScanPose(map, returns, start, params);
+  EXPECT_LE(Distance(refined, start), 0.01 + 1e-12);
+  EXPECT_LE(std::abs(refined.theta() - start.theta()), 0.004 + 1e-12);
+  EXPECT_LT(Distance(refined, truth), Distance(start, truth));
+
+  params.iterations = 0;
+  EXPECT_EQ(RefineScanPose(map, returns, start, params), start);
+  params.iterations = 10;
+  const HitCountGrid blank(0.05, Eigen::Vector2d(-1.0, -1.0), 180, 200);
+  EXPECT_EQ(RefineScanPose(blank, returns, start, params), start);
+  EXPECT_EQ(RefineScanPose(map, {}, start, params), start);
+}
+
+TEST(RefineScanPoseTest, AHeadingNearPiDoesNotWrapIntoTheLimit) {
+  // The room turned about its centre by pi, so the headings straddle the wrap.
+  HitCountGrid map(0.05, Eigen::Vector2d(-1.0, -1.0), 180, 200);
+  const LineMap room = testing::BoxRoom();
+  const Pose2 truth(3.1, 4.0, std::numbers::pi - 0.001);
+  for (int i = 0; i < 6; ++i) {
+    const Pose2 pose(2.6 + 0.2 * i, 3.0 + 0.2 * i, std::numbers::pi - 0.3 + 0.1 * i);
+    map.AddScan(testing::ScanFrom(room, pose), pose);
+  }
+  const std::vector<Eigen::Vector2d> returns = ReturnPoints(testing::ScanFrom(room, truth));
+  const Pose2 start = truth * Pose2(0.02, 0.02, 0.008);  // heading past pi, wrapped to -pi + ...
+  ScanRefinementParams params;
+  params.iterations = 10;
+  const Pose2 refined = RefineScanPose(map, returns, start, params);
+  EXPECT_LT(Distance(refined, truth), Distance(start, truth));
+  EXPECT_LT(std::abs(WrapAngle(refined.theta() - truth.theta())), 0.005);
+}
+
+// Two long parallel walls, each filling a row of cells, and a laser too short to see an end: the
+// scan fixes the pose across the corridor and its heading, and nothing along it.
+TEST(RefineScanPoseTest, AlongACorridorThePoseKeepsItsPlace) {
+  constexpr double kWall = 1.025;  // the centre of a row of cells
+  const LineMap corridor(std::vector<Segment>{{{-20.0, -kWall}, {20.0, -kWall}},
+                                              {{-20.0, kWall}, {20.0, kWall}}});
+  HitCountGrid map(0.05, Eigen::Vector2d(-5.0, -3.0), 200, 120);
+  for (int x = 0; x < map.width(); ++x) {
+    for (const double y : {-kWall, kWall}) map.Add(Eigen::Vector2d(-4.975 + 0.05 * x, y));
+  }
+  const Pose2 truth(0.3, 0.0, 0.0);
+  const std::vector<Eigen::Vector2d> returns =
+      ReturnPoints(testing::ScanFrom(corridor, truth, 181, 4.0));
+  const Pose2 start(0.32, 0.02, 0.005);
+  const Pose2 refined = RefineScanPose(map, returns, start, ScanRefinementParams{});
+  EXPECT_LT(std::abs(refined.y() - truth.y()), 0.5 * std::abs(start.y() - truth.y()));
+  EXPECT_LT(std::abs(refined.theta() - truth.theta()), 0.5 * std::abs(start.theta()));
+  EXPECT_NEAR(refined.x(), start.x(), 1e-9);
+}
+
+TEST(ScanRefinementParamsTest, RejectsLimitsThatAreNegativeOrNotFinite) {
+  ScanRefinementParams p;
+  EXPECT_NO_THROW(ValidateScanRefinementParams(p));
+  p.max_shift_cells = -0.1;
+  EXPECT_THROW(ValidateScanRefinementParams(p), Error);
+  p.max_shift_cells = 1.0;
+  p.max_turn = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(ValidateScanRefinementParams(p), Error);
+  p.max_turn = 0.02;
+  p.iterations = 100000;
+  EXPECT_THROW(ValidateScanRefinementParams(p), Error);
+}
+
+}  // namespace
+}  // namespace evoslam
