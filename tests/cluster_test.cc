@@ -1153,11 +1153,12 @@ class SlamJobTest : public ServiceTest {
     // Ten times 002's PSO iterations: the local search then lasts about a second, a window wide
     // enough for a test to catch the job part-way between its polls.
     p.set_local_iterations(300);
-    // A local search of one fixed cube per step leaves the revisit off the map, and its match,
-    // not distinct enough to be trusted in a real run, is let through: here it only has to start
-    // a loop's search, whose tasks the service must run as RunRssSlam does.
+    // A local search of one fixed cube per step, unrefined, leaves the revisit off the map, and its
+    // match, not distinct enough to be trusted in a real run, is let through: here it only has to
+    // start a loop's search, whose tasks the service must run as RunRssSlam does.
     p.set_local_recentres(0);
     p.set_local_turn_error_per_rad(0.0);
+    p.set_local_refine_iterations(0);
     p.set_min_distinctness(0.0);
     return p;
   }

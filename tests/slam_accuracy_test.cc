@@ -178,12 +178,14 @@ TEST(LoopDetectionAccuracyTest, NoLoopFoundOnAnAmbiguousDriveIsAnotherPlace) {
 }
 
 // The same ambiguous drive's loop searches, allowed to blur the map by up to 10 %: those that do
-// are applied only when they close the loop (eq. 7) by more than half. The heading's range stays
-// fixed in turns, as in 002, so that the local search leaves loops open enough to search.
+// are applied only when they close the loop (eq. 7) by more than half. The local search is 002's
+// (the heading's range fixed in turns, no refinement below a cell), so that it leaves loops open
+// enough to search.
 TEST(RssSlamAccuracyTest, ACorrectionThatBlursTheMapIsAppliedOnlyForTheMinimumEq7Gain) {
   const Dataset d = AmbiguousDrive();
   RssSlamParams params;
   params.local.turn_error_per_rad = 0.0;
+  params.local.refine.iterations = 0;
   params.generations = 10;
   params.sharpness_tolerance = 0.1;
   params.min_eq7_gain = 0.5;

@@ -35,6 +35,7 @@ void ValidateLocalSearchParams(const LocalSearchParams& p) {
   if (!(p.margin >= 0.0)) throw Error("local search: the map margin must not be negative");
   if (!std::isfinite(p.frontier_margin))
     throw Error("local search: the frontier margin must be finite");
+  ValidateScanRefinementParams(p.refine);
 }
 
 Eigen::Vector3d StepErrorCube(const LocalSearchParams& params, const Pose2& odometry_step) {
@@ -82,6 +83,9 @@ StepCorrection CorrectStep(const HitCountGrid& map, const LaserScan& scan, const
     best = r.best_fitness;
     result.pose = problem.Corrected(r.best);
     if (!OnFace(r.best, params.max_error)) break;
+  }
+  if (params.refine.iterations > 0) {
+    result.pose = RefineScanPose(map, ReturnPoints(scan), result.pose, params.refine);
   }
   return result;
 }

@@ -11,6 +11,7 @@
 #include "common/io/trajectory_io.h"
 #include "common/optim/particle_swarm.h"
 #include "common/sensor/dataset.h"
+#include "common/slam/scan_refinement.h"
 #include "common/slam/step_correction_problem.h"
 #include "common/util/random.h"
 
@@ -41,6 +42,9 @@ struct LocalSearchParams {
   // pull every step short where the laser sees less than the place holds. Negative (the
   // default): every return is scored, as in 002.
   double frontier_margin = -1.0;
+  // After the PSO, the step's pose is aligned to the map below a cell (our addition; 002 has
+  // none). iterations = 0 leaves the PSO's pose, as in 002.
+  ScanRefinementParams refine;
   // The map covers the odometry's path plus the laser's range plus this margin, so that drift
   // the search corrects stays on it.
   double margin = 10.0;

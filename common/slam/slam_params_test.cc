@@ -46,6 +46,9 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   p.set_global_beam_stride(1);
   p.set_local_frontier_margin_m(0.15);
   p.set_local_turn_error_per_rad(0.0);
+  p.set_local_refine_iterations(0);
+  p.set_local_refine_max_shift_cells(1.5);
+  p.set_local_refine_max_turn_rad(0.03);
   p.set_min_eq7_gain(0.1);
   p.set_match_window_per_m(0.0);
   p.set_max_match_window_m(2.5);
@@ -61,6 +64,9 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   EXPECT_EQ(r.global.beam_stride, 1u);
   EXPECT_EQ(r.local.frontier_margin, 0.15);
   EXPECT_EQ(r.local.turn_error_per_rad, 0.0);
+  EXPECT_EQ(r.local.refine.iterations, 0u);
+  EXPECT_EQ(r.local.refine.max_shift_cells, 1.5);
+  EXPECT_EQ(r.local.refine.max_turn, 0.03);
   EXPECT_EQ(r.min_eq7_gain, 0.1);
   EXPECT_EQ(r.loops.match_window_per_metre, 0.0);
   EXPECT_EQ(r.loops.max_match_window, 2.5);
@@ -100,6 +106,9 @@ TEST(SlamParamsTest, BadFieldsAreNamed) {
   p = {};
   p.set_local_turn_error_per_rad(-0.1);
   EXPECT_NE(ErrorOf(p).find("per radian turned"), std::string::npos);
+  p = {};
+  p.set_local_refine_max_shift_cells(-0.5);
+  EXPECT_NE(ErrorOf(p).find("largest shift"), std::string::npos);
   p = {};
   p.set_min_eq7_gain(1.0);
   EXPECT_NE(ErrorOf(p).find("eq. 7 gain"), std::string::npos);
