@@ -94,7 +94,7 @@ TEST(RefineScanPoseTest, StaysWithinItsLimitsAndLeavesAPoseWithNothingToAlignTo)
 }
 
 TEST(RefineScanPoseTest, AHeadingNearPiDoesNotWrapIntoTheLimit) {
-  // The room turned about its centre by pi, so the headings straddle the wrap.
+  // Poses facing along -x, so that the headings straddle the wrap at pi.
   HitCountGrid map(0.05, Eigen::Vector2d(-1.0, -1.0), 180, 200);
   const LineMap room = testing::BoxRoom();
   const Pose2 truth(3.1, 4.0, std::numbers::pi - 0.001);
@@ -115,8 +115,8 @@ TEST(RefineScanPoseTest, AHeadingNearPiDoesNotWrapIntoTheLimit) {
 // scan fixes the pose across the corridor and its heading, and nothing along it.
 TEST(RefineScanPoseTest, AlongACorridorThePoseKeepsItsPlace) {
   constexpr double kWall = 1.025;  // the centre of a row of cells
-  const LineMap corridor(std::vector<Segment>{{{-20.0, -kWall}, {20.0, -kWall}},
-                                              {{-20.0, kWall}, {20.0, kWall}}});
+  const LineMap corridor(
+      std::vector<Segment>{{{-20.0, -kWall}, {20.0, -kWall}}, {{-20.0, kWall}, {20.0, kWall}}});
   HitCountGrid map(0.05, Eigen::Vector2d(-5.0, -3.0), 200, 120);
   for (int x = 0; x < map.width(); ++x) {
     for (const double y : {-kWall, kWall}) map.Add(Eigen::Vector2d(-4.975 + 0.05 * x, y));
