@@ -58,23 +58,30 @@ void TimeEvaluate(benchmark::State& state, const Problem& problem, const Eigen::
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * batch.cols()));
 }
 
-// One generation of a global search (70 candidates) over the first 300 scans, at their
-// odometry poses, re-inserted into the map of the rest of the log. Arg: threads.
+// One generation of a global search (70 candidates) over the first scans, at their odometry
+// poses, re-inserted into the map of the rest of the log. Args: threads, the stretch's scans (over
+// 300, eq. 6 re-inserts 300 of them, as for a loop thousands of steps long).
 void BM_GlobalSearchEvaluate(benchmark::State& state) {
   const Dataset* log = IntelOrSkip(state);
   if (!log) return;
-  constexpr std::size_t kStretch = 300;
+  const auto stretch = static_cast<std::size_t>(state.range(1));
   constexpr Eigen::Index kCandidates = 70;
   std::vector<Pose2> poses;
   for (const LaserScan& s : log->scans) poses.push_back(s.odometry);
   HitCountGrid base = EmptyMapFor(*log, LocalSearchParams{});
-  for (std::size_t i = kStretch; i < log->scans.size(); ++i) base.AddScan(log->scans[i], poses[i]);
-  const GlobalSearchProblem problem(log->scans, poses, 0, kStretch, base, GlobalSearchParams{},
+  for (std::size_t i = stretch; i < log->scans.size(); ++i) base.AddScan(log->scans[i], poses[i]);
+  const GlobalSearchProblem problem(log->scans, poses, 0, stretch, base, GlobalSearchParams{},
                                     std::nullopt);
   TimeEvaluate(state, problem, RandomBatch(problem, kCandidates, 1));
   state.counters["cells"] = static_cast<double>(base.width()) * base.height();
 }
-BENCHMARK(BM_GlobalSearchEvaluate)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GlobalSearchEvaluate)
+    ->ArgNames({"threads", "scans"})
+    ->Args({1, 300})
+    ->Args({2, 300})
+    ->Args({2, 3000})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 // One PSO generation of the local search (10 candidates): scan 200 against the map of the 200
 // scans before it, at their odometry poses. Arg: threads.

@@ -121,7 +121,7 @@ void AddSlamParamOptions(CLI::App* cmd, SlamArgs& a) {
                  "the algorithm each island runs, as a paper's preset (docs/engine.md)")
       ->check(CLI::IsMember(PresetNames()));
   AddParamOption(cmd, p, "--max-stretch", "max_stretch",
-                 "scans a global search covers at most (0: all since the last)");
+                 "scans a global search covers at most (0: the whole loop, or all since the last)");
   AddParamOption(cmd, p, "--loop-radius", "revisit_radius_m",
                  "loop detection: distance from an earlier pose that counts as a revisit, m")
       ->check(PositiveNumber());

@@ -7,6 +7,7 @@
 #include <memory>
 #include <span>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "common/engine/presets.h"
@@ -237,9 +238,45 @@ TEST(RssSlamAccuracyTest, OnTheIntelLabTheGlobalSearchesOrATurnWideCubeHalveTheF
   EXPECT_LT(wide_local.translation_mean, 0.5 * fixed_local.translation_mean)
       << "fixed cube " << fixed_local.translation_mean << " m, growing with the turn "
       << wide_local.translation_mean;
-  EXPECT_LE(wide_slam.translation_mean, fixed_slam.translation_mean);
+  // With whole loops bent, the searches close what the fixed cube leaves as well as the wide cube
+  // does: 0.0178 and 0.0184 m when this was written.
+  EXPECT_LT(wide_slam.translation_mean, 1.1 * fixed_slam.translation_mean);
   EXPECT_LT(wide_slam.translation_mean, e_odometry.translation_mean / 20)
       << "odometry " << e_odometry.translation_mean << " m, SLAM " << wide_slam.translation_mean;
+}
+
+// The ACES building's raw log, whose loops run 150 to 300 m of corridor: the relations between
+// the two visits of a place (59 of them, over 5 minutes apart) score how well they are closed.
+// Bent over their last 300 steps only, the loops keep much of their drift; bent over all of
+// them, starting from the loop closed, the whole log comes out below GMapping's best seeds here
+// (0.050 m). Seed 3: 0.045 against 0.074 m when this was written (docs/accuracy.md).
+TEST(RssSlamAccuracyTest, OnAcesLoopsOfThousandsOfStepsCloseWhenTheirSearchesBendAllOfThem) {
+  const std::filesystem::path dir(EVOSLAM_DATA_DIR);
+  if (!std::filesystem::exists(dir / "aces.clf.bz2")) {
+    GTEST_SKIP() << "real data absent from " << dir;
+  }
+  const Dataset d = ReadCarmen(dir / "aces.clf.bz2");
+  const std::vector<Relation> relations = ReadRelations(dir / "aces.relations");
+  std::vector<Relation> across;
+  for (const Relation& r : relations) {
+    if (r.t2 - r.t1 > 300.0) across.push_back(r);
+  }
+  const auto run = [&](std::size_t max_stretch) {
+    RssSlamParams params;
+    params.max_stretch = max_stretch;
+    const RssSlamResult r = RunRssSlam(d, params, 3);
+    EXPECT_GE(r.loops.size(), 3u) << "max_stretch " << max_stretch;
+    return std::pair(ComputeRelationErrors(r.trajectory, relations),
+                     ComputeRelationErrors(r.trajectory, across));
+  };
+  const auto [whole, whole_across] = run(0);
+  const auto [last_300, last_300_across] = run(300);
+  ASSERT_GE(whole_across.relations, 50u);
+  EXPECT_LT(whole.translation_mean, 0.050);
+  EXPECT_LT(whole_across.translation_mean, 0.5 * last_300_across.translation_mean)
+      << "whole loops " << whole_across.translation_mean << " m, their last 300 steps "
+      << last_300_across.translation_mean << " m";
+  EXPECT_LT(whole.translation_mean, last_300.translation_mean);
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 #include "common/optim/algorithm.h"
 
+#include <algorithm>
 #include <cmath>
-#include <optional>
 #include <string>
 
 #include "common/util/error.h"
@@ -69,11 +69,13 @@ void Algorithm::DoInitialize(const Problem& problem, Rng& rng) {
     for (Eigen::Index j = 0; j < x.rows(); ++j) x(j, i) = rng.Uniform(lo(j), hi(j));
     Conform(problem, x.col(i));
   }
-  if (const std::optional<Eigen::VectorXd> start = problem.start(); start && x.cols() > 0) {
-    if (start->size() != x.rows())
-      throw Error(std::string(name()) + ": the start has the wrong size");
-    x.col(0) = *start;
-    Conform(problem, x.col(0));
+  const std::vector<Eigen::VectorXd> starts = problem.starts();
+  for (Eigen::Index i = 0; i < std::min<Eigen::Index>(x.cols(), std::ssize(starts)); ++i) {
+    const Eigen::VectorXd& start = starts[static_cast<std::size_t>(i)];
+    if (start.size() != x.rows())
+      throw Error(std::string(name()) + ": start " + std::to_string(i) + " has the wrong size");
+    x.col(i) = start;
+    Conform(problem, x.col(i));
   }
   population_.x = std::move(x);
   Evaluate(problem, population_.x, population_.f);

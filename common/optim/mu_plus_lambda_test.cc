@@ -423,12 +423,12 @@ class SphereWithStart : public FunctionProblem {
                         [](const Eigen::Ref<const Eigen::VectorXd>& x) {
                           return (x.array() - 9.0).square().sum();
                         }) {}
-  std::optional<Eigen::VectorXd> start() const override {
-    return Eigen::VectorXd::Constant(20, 8.9);
+  std::vector<Eigen::VectorXd> starts() const override {
+    return {Eigen::VectorXd::Constant(20, 8.9), Eigen::VectorXd::Constant(20, -3.0)};
   }
 };
 
-TEST(MuPlusLambdaTest, FirstPopulationHoldsTheProblemsStartAndTheSearchGoesOnFromIt) {
+TEST(MuPlusLambdaTest, FirstPopulationHoldsTheProblemsStartsAndTheSearchGoesOnFromThem) {
   const SphereWithStart problem;
   const FunctionProblem plain(
       problem.lower(), problem.upper(),
@@ -438,11 +438,12 @@ TEST(MuPlusLambdaTest, FirstPopulationHoldsTheProblemsStartAndTheSearchGoesOnFro
   started.Initialize(problem, rng);
   fresh.Initialize(plain, rng_fresh);
   EXPECT_TRUE(started.population().x.col(0).isApproxToConstant(8.9));
+  EXPECT_TRUE(started.population().x.col(1).isApproxToConstant(-3.0));
   const double start_fitness = 20 * 0.1 * 0.1;
   EXPECT_NEAR(started.population().f.minCoeff(), start_fitness, 1e-12);
   EXPECT_GT(fresh.population().f.minCoeff(), 100 * start_fitness);
-  // The rest of the first population is drawn as without a start.
-  EXPECT_EQ(started.population().x.rightCols(9), fresh.population().x.rightCols(9));
+  // The rest of the first population is drawn as without starts.
+  EXPECT_EQ(started.population().x.rightCols(8), fresh.population().x.rightCols(8));
   for (int g = 0; g < 30; ++g) {
     started.Step(problem, rng);
     fresh.Step(plain, rng_fresh);

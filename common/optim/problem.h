@@ -3,8 +3,8 @@
 
 #include <Eigen/Core>
 #include <cstddef>
-#include <optional>
 #include <span>
+#include <vector>
 
 namespace evoslam {
 
@@ -28,9 +28,10 @@ class Problem {
   virtual Encoding encoding() const { return Encoding::kReal; }
   virtual std::size_t objectives() const { return 1; }
 
-  // A candidate known before the search, such as the solution as it stands, that the first
-  // population should hold so that an elitist search cannot end worse; empty when there is none.
-  virtual std::optional<Eigen::VectorXd> start() const { return std::nullopt; }
+  // Candidates known before the search, such as the solution as it stands, that the first
+  // population should hold (as many as fit, in order), so that an elitist search cannot end
+  // worse than the best of them; empty when there are none.
+  virtual std::vector<Eigen::VectorXd> starts() const { return {}; }
 
   // Problem knowledge for the immune MOEA's vaccination; nullptr when the problem has none.
   virtual const Immunity* immunity() const { return nullptr; }

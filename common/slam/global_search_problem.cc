@@ -1,6 +1,7 @@
 #include "common/slam/global_search_problem.h"
 
 #include <Eigen/Geometry>
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -53,12 +54,22 @@ GlobalSearchProblem::GlobalSearchProblem(std::span<const LaserScan> scans,
   const std::size_t steps = increments_.size();
   const std::size_t partitions = std::max<std::size_t>(1, std::min(params.partitions, steps));
   for (std::size_t i = 0; i <= partitions; ++i) bounds_.push_back(i * steps / partitions);
-  for (std::size_t k = first; k < last; ++k) {
+  if (params.scored_scans > 0) {
+    scan_stride_ =
+        std::max<std::size_t>(1, (last - first + params.scored_scans - 1) / params.scored_scans);
+  }
+  for (std::size_t k = first; k < last; k += scan_stride_) {
     const std::vector<Eigen::Vector2d> all = ReturnPoints(scans[k]);
     std::vector<Eigen::Vector2d>& used = returns_.emplace_back();
     for (std::size_t i = 0; i < all.size(); i += params.beam_stride) used.push_back(all[i]);
   }
   if (loop && loop->earlier < first) loop_earlier_pose_ = Pose2Frame(poses[loop->earlier]);
+  if (loop) {
+    const std::vector<Eigen::Vector2d> later = ReturnPoints(scans[loop->later]);
+    double squares = 0.0;
+    for (const Eigen::Vector2d& p : later) squares += p.squaredNorm();
+    if (!later.empty()) loop_lever_ = std::sqrt(squares / static_cast<double>(later.size()));
+  }
   const auto n = static_cast<Eigen::Index>(partitions * kGenesPerColumn);
   lower_.resize(n);
   upper_.resize(n);
@@ -77,6 +88,66 @@ Eigen::VectorXd GlobalSearchProblem::Identity() const {
   Eigen::VectorXd x = Eigen::VectorXd::Zero(lower_.size());
   for (Eigen::Index g = 1; g < x.size(); g += 2) x(g) = 0.5;
   return x;
+}
+
+std::optional<Eigen::VectorXd> GlobalSearchProblem::ClosingCandidate() const {
+  // A loop that starts inside the stretch bends with it; RunRssSlam's never does.
+  if (!loop_ || loop_->earlier >= first_) return std::nullopt;
+  const std::size_t partitions = bounds_.size() - 1;
+  Eigen::VectorXd x = Identity();
+  const auto gene = [&](std::size_t partition, int axis) {
+    return static_cast<Eigen::Index>(partition * kGenesPerColumn + 2 * axis);
+  };
+  const auto clamp = [&](Eigen::Index g, double v) { return std::clamp(v, lower_(g), upper_(g)); };
+  const auto later = [&](const Eigen::VectorXd& candidate) {
+    const std::vector<Pose2> poses = Apply(candidate);
+    return poses[loop_->later - first_];
+  };
+  const Pose2 expected = loop_earlier_pose_ * loop_->relative;
+  // The heading errors add up along the path: the later heading moves by each partition's error
+  // times the share of its weight spent before the later scan. When the loop ends the stretch (as
+  // RunRssSlam's do) that is all of it, and the least-norm split is the even one.
+  const double start_heading = later(x).theta();
+  const double turn = WrapAngle(expected.theta() - start_heading);
+  Eigen::RowVectorXd turns = Eigen::RowVectorXd::Ones(static_cast<Eigen::Index>(partitions));
+  if (loop_->later + 1 < last_) {
+    for (std::size_t i = 0; i < partitions; ++i) {
+      Eigen::VectorXd unit = x;
+      unit(gene(i, 2)) += 1.0;
+      turns(static_cast<Eigen::Index>(i)) = WrapAngle(later(unit).theta() - start_heading);
+    }
+  }
+  const double reach = turns.squaredNorm();
+  for (std::size_t i = 0; i < partitions && reach > 0; ++i) {
+    x(gene(i, 2)) = clamp(gene(i, 2), turn * turns(static_cast<Eigen::Index>(i)) / reach);
+  }
+  // With the headings set, the later position moves linearly with the position errors: each
+  // partition's two columns of that map, then the least-norm errors that make up the miss.
+  const Eigen::Vector2d at = later(x).translation();
+  Eigen::MatrixXd moves(2, static_cast<Eigen::Index>(2 * partitions));
+  for (std::size_t i = 0; i < partitions; ++i) {
+    for (int axis = 0; axis < 2; ++axis) {
+      Eigen::VectorXd unit = x;
+      unit(gene(i, axis)) += 1.0;
+      moves.col(static_cast<Eigen::Index>(2 * i) + axis) = later(unit).translation() - at;
+    }
+  }
+  const Eigen::Vector2d miss = expected.translation() - at;
+  const Eigen::VectorXd errors = moves.completeOrthogonalDecomposition().solve(miss);
+  for (std::size_t i = 0; i < partitions; ++i) {
+    for (int axis = 0; axis < 2; ++axis) {
+      x(gene(i, axis)) = clamp(gene(i, axis), errors(static_cast<Eigen::Index>(2 * i) + axis));
+    }
+  }
+  return x;
+}
+
+std::vector<Eigen::VectorXd> GlobalSearchProblem::starts() const {
+  std::vector<Eigen::VectorXd> starts{Identity()};
+  if (std::optional<Eigen::VectorXd> closing = ClosingCandidate()) {
+    starts.push_back(std::move(*closing));
+  }
+  return starts;
 }
 
 std::vector<Pose2> GlobalSearchProblem::Apply(const Eigen::Ref<const Eigen::VectorXd>& x) const {
@@ -133,8 +204,8 @@ void GlobalSearchProblem::Score(const Eigen::Ref<const Eigen::VectorXd>& x, Scra
   GridCellSet& cells = scratch.cells;
   cells.Clear();
   HitCountGrid::Insertion added;
-  for (std::size_t k = 0; k < poses.size(); ++k) {
-    base_.CountInsertion(poses[k], returns_[k], cells, added);
+  for (std::size_t k = 0; k < poses.size(); k += scan_stride_) {
+    base_.CountInsertion(poses[k], returns_[k / scan_stride_], cells, added);
   }
   const double occupied = static_cast<double>(base_.occupied() + added.fresh);
   fitness[0] = occupied > 0 ? -static_cast<double>(base_.total() + added.inside) / occupied : 0.0;
@@ -150,9 +221,10 @@ void GlobalSearchProblem::Score(const Eigen::Ref<const Eigen::VectorXd>& x, Scra
     const Pose2Frame& earlier =
         loop_->earlier < first_ ? loop_earlier_pose_ : poses[loop_->earlier - first_];
     const Pose2 expected = earlier * loop_->relative;
-    distance =
-        WeightedLength(poses[loop_->later - first_].pose().translation() - expected.translation(),
-                       earlier.pose().theta(), loop_->weight);
+    const Pose2& later = poses[loop_->later - first_].pose();
+    distance = std::hypot(WeightedLength(later.translation() - expected.translation(),
+                                         earlier.pose().theta(), loop_->weight),
+                          loop_lever_ * WrapAngle(later.theta() - expected.theta()));
   }
   fitness[1] = params_.w1 * conflicts + params_.w2 * distance;
 }

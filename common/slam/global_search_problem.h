@@ -24,10 +24,17 @@ struct GlobalSearchParams {
   // The Gaussian of eq. 5 per axis, as a fraction of a partition's length.
   Eigen::Vector3d sigma{0.3, 0.3, 0.3};
   double w1 = 0.5;  // eq. 7: weight of path cells on obstacles (002 Fig. 11: 0.5)
-  double w2 = 0.5;  // eq. 7: weight of the distance between two observations of one place
+  // Eq. 7: weight of the distance between two observations of one place: how far the loop's
+  // later scan lands from where the match puts it, its heading's miss counted by how far it
+  // moves the scan's returns (docs/rss_slam.md).
+  double w2 = 0.5;
   // Eq. 6 counts every this-many-th return of each scan of the stretch. Neighbouring scans see
   // the same walls, so half the returns still draw them, at 0.6 of the cost (docs/rss_slam.md).
   std::size_t beam_stride = 2;
+  // Eq. 6 re-inserts at most this many scans of the stretch, evenly spaced (0: every scan), so
+  // that a search over a whole loop of thousands of steps costs what one over a few hundred
+  // does; the poses of every step still count in eq. 7 (docs/rss_slam.md).
+  std::size_t scored_scans = 300;
 };
 
 void ValidateGlobalSearchParams(const GlobalSearchParams& params);
@@ -54,12 +61,12 @@ double WeightedLength(const Eigen::Vector2d& miss, double heading, const Eigen::
 // a Gaussian (genes: L columns of (dx, mu_x, dy, mu_y, dtheta, mu_theta)), the error being spread
 // over the partition's steps with the Gaussian's weights (eq. 5, normalised so that a
 // partition's error is its total). Two objectives, both minimised: eq. 6 negated (the mean
-// number of observations per occupied cell of the whole map, every beam_stride-th return of the
-// scans of [first, last) re-inserted at their corrected poses into `base`, which holds every
-// other scan), and eq. 7
-// negated (w1 x the corrected poses that stand on an occupied cell + w2 x how far the loop's
-// later pose lands from where the constraint puts it, as its weight measures it; no constraint,
-// no second term).
+// number of observations per occupied cell of the whole map, every beam_stride-th return of
+// scored_scans evenly spaced scans of [first, last) re-inserted at their corrected poses into
+// `base`, which holds every scan outside the stretch), and eq. 7 negated (w1 x the corrected
+// poses that stand on an occupied cell + w2 x how far the loop's later pose lands from where the
+// constraint puts it, as its weight measures it, and how far its returns turn from where it puts
+// them; no constraint, no second term).
 class GlobalSearchProblem : public Problem {
  public:
   // `poses` holds the current poses of scans [0, last). The pose of scan max(first, 1) - 1 is
@@ -78,8 +85,13 @@ class GlobalSearchProblem : public Problem {
   std::vector<Pose2> Apply(const Eigen::Ref<const Eigen::VectorXd>& x) const;
   // The candidate that changes nothing (all errors zero, means centred).
   Eigen::VectorXd Identity() const;
-  // The search starts from the trajectory as it stands.
-  std::optional<Eigen::VectorXd> start() const override { return Identity(); }
+  // The candidate that closes the loop: the heading's miss at the loop's later scan shared out
+  // between the partitions at the least total correction (evenly, when the loop ends the
+  // stretch), then its position's miss likewise, each gene within its bounds. None without a loop,
+  // or for one that starts inside the stretch.
+  std::optional<Eigen::VectorXd> ClosingCandidate() const;
+  // The search starts from the trajectory as it stands, and from the loop closed.
+  std::vector<Eigen::VectorXd> starts() const override;
 
  private:
   // A thread's working memory, made once a batch rather than once a candidate.
@@ -96,12 +108,17 @@ class GlobalSearchProblem : public Problem {
   GlobalSearchParams params_;
   std::optional<LoopConstraint> loop_;
   std::size_t first_, last_;
+  std::size_t scan_stride_ = 1;         // eq. 6 re-inserts scans first, first + stride, ...
   std::size_t steps_begin_;             // the first corrected step
   Pose2Frame anchor_;                   // the pose before steps_begin_
   std::vector<Pose2Frame> increments_;  // step j's motion, j in [steps_begin_, last)
   std::vector<std::size_t> bounds_;     // partition i covers steps [bounds_[i], bounds_[i + 1])
-  std::vector<std::vector<Eigen::Vector2d>> returns_;  // scan first + k's end points, laser frame
+  // The end points of scan first + k * scan_stride_, laser frame.
+  std::vector<std::vector<Eigen::Vector2d>> returns_;
   Pose2Frame loop_earlier_pose_;  // the loop's earlier pose, when it lies before first
+  // The RMS range of the loop's later scan: turned by a small angle, its returns move about
+  // that many times the angle.
+  double loop_lever_ = 0.0;
   Eigen::VectorXd lower_, upper_;
 };
 

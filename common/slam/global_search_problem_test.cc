@@ -83,7 +83,12 @@ Scored ScoreAsWritten(std::span<const LaserScan> scans, std::span<const Pose2> p
     }
   }
   std::vector<Eigen::Vector2d> points;
-  for (std::size_t k = 0; k < r.poses.size(); ++k) {
+  const std::size_t n = last - first;
+  const std::size_t scan_stride =
+      params.scored_scans > 0
+          ? std::max<std::size_t>(1, (n + params.scored_scans - 1) / params.scored_scans)
+          : 1;
+  for (std::size_t k = 0; k < r.poses.size(); k += scan_stride) {
     const std::vector<Eigen::Vector2d> returns = ReturnPoints(scans[first + k]);
     for (std::size_t i = 0; i < returns.size(); i += params.beam_stride) {
       points.push_back(r.poses[k] * returns[i]);
@@ -110,8 +115,15 @@ Scored ScoreAsWritten(std::span<const LaserScan> scans, std::span<const Pose2> p
     const Eigen::Vector2d miss =
         r.poses[loop->later - first].translation() - (earlier * loop->relative).translation();
     const Eigen::Vector2d local = Eigen::Rotation2Dd(-earlier.theta()).toRotationMatrix() * miss;
-    distance =
+    const double along =
         loop->weight.isIdentity(0.0) ? miss.norm() : std::sqrt(local.dot(loop->weight * local));
+    const std::vector<Eigen::Vector2d> returns = ReturnPoints(scans[loop->later]);
+    double squares = 0.0;
+    for (const Eigen::Vector2d& p : returns) squares += p.squaredNorm();
+    const double lever = std::sqrt(squares / static_cast<double>(returns.size()));
+    const double turn =
+        WrapAngle(r.poses[loop->later - first].theta() - (earlier * loop->relative).theta());
+    distance = std::hypot(along, lever * turn);
   }
   r.fitness[1] = params.w1 * conflicts + params.w2 * distance;
   return r;
@@ -131,14 +143,17 @@ TEST(GlobalSearchProblemTest, ScoresRandomCandidatesToTheBitAsTheEquationsAreWri
     std::size_t first, last;
     LoopConstraint loop;
     std::size_t beam_stride;
+    std::size_t scored_scans;  // 7 and 13 of 40: eq. 6 re-inserts one scan in 6, in 4
   };
   // A loop matched along a corridor: a miss along its length barely counts.
   Eigen::Matrix2d corridor;
   corridor << 0.2, 0.3, 0.3, 1.0;
   for (const Case& c :
-       {Case{0, 40, {5, 35, odometry[5].inverse() * odometry[35] * nudge}, 1},
-        Case{30, 70, {10, 60, odometry[10].inverse() * odometry[60] * nudge}, 2},
-        Case{30, 70, {40, 65, odometry[40].inverse() * odometry[65] * nudge, corridor}, 3}}) {
+       {Case{0, 40, {5, 35, odometry[5].inverse() * odometry[35] * nudge}, 1, 0},
+        Case{30, 70, {10, 60, odometry[10].inverse() * odometry[60] * nudge}, 2, 0},
+        Case{30, 70, {40, 65, odometry[40].inverse() * odometry[65] * nudge, corridor}, 3, 0},
+        Case{0, 40, {5, 35, odometry[5].inverse() * odometry[35] * nudge}, 1, 7},
+        Case{30, 70, {10, 60, odometry[10].inverse() * odometry[60] * nudge}, 2, 13}}) {
     HitCountGrid others = base;
     for (std::size_t i = 0; i < log.scans.size(); ++i) {
       if (i < c.first || i >= c.last) others.AddScan(log.scans[i], odometry[i]);
@@ -146,6 +161,7 @@ TEST(GlobalSearchProblemTest, ScoresRandomCandidatesToTheBitAsTheEquationsAreWri
     GlobalSearchParams params;
     params.partitions = 6;
     params.beam_stride = c.beam_stride;
+    params.scored_scans = c.scored_scans;
     const GlobalSearchProblem problem(log.scans, std::span(odometry).first(c.last), c.first, c.last,
                                       others, params, c.loop);
     Rng rng(c.first + c.loop.earlier);
@@ -183,16 +199,30 @@ TEST(GlobalSearchProblemTest, ScoresRandomCandidatesToTheBitAsTheEquationsAreWri
 namespace evoslam {
 namespace {
 
-// Eq. 7's loop term measures the miss in the earlier scan's frame through the loop's weight:
-// along the direction the match cannot pin, the later pose may land off at little cost.
-TEST(GlobalSearchProblemTest, TheLoopsWeightDiscountsAMissAlongWhatTheMatchCouldNotPin) {
+// Thirty scans of the office cluster at their odometry poses, and a map with nothing on it, so
+// that eq. 7 of a stretch holds its loop term alone (with w1 = 0).
+struct LoopScene {
+  Dataset log;
+  std::vector<Pose2> poses;
+  HitCountGrid empty{0.05, Eigen::Vector2d(-2, -2), 600, 460};
+};
+
+LoopScene MakeLoopScene() {
   SimulationOptions sim;
   sim.laser.beams = 31;
   sim.max_scans = 30;
-  const Dataset log = Simulate(BuiltinWorld("office-cluster"), sim);
-  std::vector<Pose2> poses;
-  for (const LaserScan& s : log.scans) poses.push_back(s.odometry);
-  const HitCountGrid empty(0.05, Eigen::Vector2d(-2, -2), 600, 460);
+  LoopScene scene{Simulate(BuiltinWorld("office-cluster"), sim), {}};
+  for (const LaserScan& s : scene.log.scans) scene.poses.push_back(s.odometry);
+  return scene;
+}
+
+// Eq. 7's loop term measures the miss in the earlier scan's frame through the loop's weight:
+// along the direction the match cannot pin, the later pose may land off at little cost.
+TEST(GlobalSearchProblemTest, TheLoopsWeightDiscountsAMissAlongWhatTheMatchCouldNotPin) {
+  const LoopScene scene = MakeLoopScene();
+  const Dataset& log = scene.log;
+  const std::vector<Pose2>& poses = scene.poses;
+  const HitCountGrid& empty = scene.empty;
   GlobalSearchParams params;
   params.w1 = 0.0;
   params.w2 = 1.0;
@@ -211,6 +241,78 @@ TEST(GlobalSearchProblemTest, TheLoopsWeightDiscountsAMissAlongWhatTheMatchCould
   EXPECT_NEAR(eq7(loop), 0.03, 1e-9);
   loop.weight << 1.0, 0.0, 0.0, 0.01;  // y barely pinned: the miss along x counts in full
   EXPECT_NEAR(eq7(loop), 0.3, 1e-9);
+}
+
+// A loop closed in place but not in heading leaves the later scan's walls turned: eq. 7 counts
+// the turn by how far it moves the scan's returns, their RMS range times the angle.
+TEST(GlobalSearchProblemTest, AHeadingMissCountsByHowFarItTurnsTheLaterScansReturns) {
+  const LoopScene scene = MakeLoopScene();
+  const Dataset& log = scene.log;
+  const std::vector<Pose2>& poses = scene.poses;
+  const HitCountGrid& empty = scene.empty;
+  GlobalSearchParams params;
+  params.w1 = 0.0;
+  params.w2 = 1.0;
+  double squares = 0.0;
+  const std::vector<Eigen::Vector2d> returns = ReturnPoints(log.scans[25]);
+  ASSERT_FALSE(returns.empty());
+  for (const Eigen::Vector2d& p : returns) squares += p.squaredNorm();
+  const double rms = std::sqrt(squares / static_cast<double>(returns.size()));
+  for (const double turn : {0.1, -0.05}) {
+    const LoopConstraint loop{
+        5, 25, poses[5].inverse() * Pose2(poses[25].translation(), poses[25].theta() + turn)};
+    const GlobalSearchProblem problem(log.scans, poses, 10, 30, empty, params, loop);
+    std::vector<double> fitness(2);
+    problem.Evaluate(problem.Identity(), fitness);
+    EXPECT_NEAR(fitness[1], rms * std::abs(turn), 1e-9) << turn;
+  }
+}
+
+// The start that closes a loop: the later pose lands where the match puts it, heading and
+// position, as long as the bounds allow; tighter bounds leave it part-way, never outside them.
+TEST(GlobalSearchProblemTest, TheClosingCandidateClosesTheLoopWithinTheBounds) {
+  const LoopScene scene = MakeLoopScene();
+  const Dataset& log = scene.log;
+  const std::vector<Pose2>& poses = scene.poses;
+  const HitCountGrid& empty = scene.empty;
+  const LoopConstraint loop{5, 25, poses[5].inverse() * poses[25] * Pose2(0.3, -0.2, 0.05)};
+  const Pose2 want = poses[5] * loop.relative;
+  GlobalSearchParams params;
+  const auto miss = [&](const GlobalSearchProblem& problem, const Eigen::VectorXd& x) {
+    return want.inverse() * problem.Apply(x)[25 - 10];
+  };
+
+  // The loop ending the stretch, as RunRssSlam's do, and ending inside it.
+  for (const std::size_t last : {26u, 30u}) {
+    const GlobalSearchProblem problem(log.scans, std::span(poses).first(last), 10, last, empty,
+                                      params, loop);
+    const std::optional<Eigen::VectorXd> closing = problem.ClosingCandidate();
+    ASSERT_TRUE(closing) << last;
+    EXPECT_NEAR(miss(problem, *closing).translation().norm(), 0.0, 1e-9) << last;
+    EXPECT_NEAR(miss(problem, *closing).theta(), 0.0, 1e-9) << last;
+    const std::vector<Eigen::VectorXd> starts = problem.starts();
+    ASSERT_EQ(starts.size(), 2u);
+    EXPECT_EQ(starts[0], problem.Identity());
+    EXPECT_EQ(starts[1], *closing);
+  }
+
+  params.max_error = Eigen::Vector3d(0.01, 0.01, 0.002);
+  const GlobalSearchProblem tight(log.scans, poses, 10, 30, empty, params, loop);
+  const Eigen::VectorXd part_way = *tight.ClosingCandidate();
+  EXPECT_TRUE((part_way.array() >= tight.lower().array()).all());
+  EXPECT_TRUE((part_way.array() <= tight.upper().array()).all());
+  const Pose2 left = miss(tight, part_way), open = miss(tight, tight.Identity());
+  EXPECT_LT(std::abs(left.theta()), std::abs(open.theta()) - 0.01);
+  EXPECT_GT(std::abs(left.theta()), 0.01);
+
+  EXPECT_FALSE(GlobalSearchProblem(log.scans, poses, 10, 30, empty, params, std::nullopt)
+                   .ClosingCandidate());
+  EXPECT_EQ(
+      GlobalSearchProblem(log.scans, poses, 10, 30, empty, params, std::nullopt).starts().size(),
+      1u);
+  // A loop that starts inside the stretch would bend with it.
+  EXPECT_FALSE(
+      GlobalSearchProblem(log.scans, poses, 3, 30, empty, params, loop).ClosingCandidate());
 }
 
 TEST(PickGlobalSolutionTest, LowestSecondObjectiveOfTheFirstFrontWithinTheBound) {

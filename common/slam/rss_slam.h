@@ -27,8 +27,9 @@ struct RssSlamParams {
   LoopDetectionParams loops;
   bool global_search = true;     // false: local search alone
   std::size_t global_every = 0;  // k; 0: only on a detected loop (docs/rss_slam.md)
-  // A global search covers at most this many steps back (0: all since the last one).
-  std::size_t max_stretch = 300;
+  // A global search covers at most this many steps back (0: the whole loop, or all since the
+  // last search). The drift a loop reveals built up over all of it (docs/rss_slam.md).
+  std::size_t max_stretch = 0;
   // A search's bounds on each partition's error (m, m, rad). A loop's search may correct up to
   // loop_bound_scale times the loop's discrepancy plus refine_error, within global.max_error; a
   // periodic search (no loop) refines within refine_error. Bounds sized to the error at hand keep

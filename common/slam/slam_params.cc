@@ -57,6 +57,7 @@ RssSlamParams RssSlamParamsFromProto(const proto::SlamParams& p) {
   if (p.has_w1()) g.w1 = p.w1();
   if (p.has_w2()) g.w2 = p.w2();
   if (p.has_global_beam_stride()) g.beam_stride = p.global_beam_stride();
+  if (p.has_global_scored_scans()) g.scored_scans = p.global_scored_scans();
   if (p.has_generations()) r.generations = p.generations();
   if (p.has_islands()) r.islands = p.islands();
   if (p.has_preset()) r.preset = p.preset();
@@ -119,6 +120,7 @@ proto::SlamParams CompleteSlamParams(const proto::SlamParams& given) {
   p.set_w1(g.w1);
   p.set_w2(g.w2);
   p.set_global_beam_stride(static_cast<std::uint32_t>(g.beam_stride));
+  p.set_global_scored_scans(static_cast<std::uint32_t>(g.scored_scans));
   p.set_generations(static_cast<std::uint32_t>(r.generations));
   p.set_islands(static_cast<std::uint32_t>(r.islands));
   p.set_preset(r.preset);

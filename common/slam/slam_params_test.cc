@@ -44,6 +44,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   p.set_w2(0.0);
   p.set_partitions(5);
   p.set_global_beam_stride(1);
+  p.set_global_scored_scans(0);
   p.set_local_frontier_margin_m(0.15);
   p.set_local_turn_error_per_rad(0.0);
   p.set_local_refine_iterations(0);
@@ -62,6 +63,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   EXPECT_EQ(r.global.w2, 0.0);
   EXPECT_EQ(r.global.partitions, 5u);
   EXPECT_EQ(r.global.beam_stride, 1u);
+  EXPECT_EQ(r.global.scored_scans, 0u);
   EXPECT_EQ(r.local.frontier_margin, 0.15);
   EXPECT_EQ(r.local.turn_error_per_rad, 0.0);
   EXPECT_EQ(r.local.refine.iterations, 0u);

@@ -8,7 +8,7 @@
 
 namespace evoslam {
 
-double WrapAngle(double angle) {
+double WrapAngleOutside(double angle) {
   constexpr double kTwoPi = 2.0 * std::numbers::pi;
   double wrapped = std::remainder(angle, kTwoPi);  // in [-pi, pi]
   if (wrapped <= -std::numbers::pi) wrapped += kTwoPi;

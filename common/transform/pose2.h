@@ -3,11 +3,16 @@
 
 #include <Eigen/Core>
 #include <iosfwd>
+#include <numbers>
 
 namespace evoslam {
 
-// Wraps an angle in radians to (-pi, pi].
-double WrapAngle(double angle);
+// Wraps an angle in radians to (-pi, pi]. Inline with a test for an angle already there (the
+// usual case, and remainder's answer to the bit), as every pose composed is wrapped.
+double WrapAngleOutside(double angle);
+inline double WrapAngle(double angle) {
+  return angle > -std::numbers::pi && angle <= std::numbers::pi ? angle : WrapAngleOutside(angle);
+}
 
 // A rigid motion in the plane, SE(2): rotation by theta, then translation by (x, y).
 // As a robot pose it maps points from the robot frame into the world frame.

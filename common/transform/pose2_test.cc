@@ -10,6 +10,13 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
+TEST(WrapAngleTest, LeavesAnAngleInsideTheIntervalAsItIs) {
+  for (double a = -kPi; a <= kPi; a += 0.001) {
+    const double inside = a > -kPi ? a : kPi;
+    EXPECT_EQ(WrapAngle(a), inside) << a;
+  }
+}
+
 TEST(WrapAngleTest, MapsIntoHalfOpenInterval) {
   EXPECT_DOUBLE_EQ(WrapAngle(0.0), 0.0);
   EXPECT_DOUBLE_EQ(WrapAngle(kPi), kPi);
