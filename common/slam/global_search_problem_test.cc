@@ -216,6 +216,14 @@ LoopScene MakeLoopScene() {
   return scene;
 }
 
+// Eq. 7 with its loop term alone, at weight 1.
+GlobalSearchParams LoopTermOnly() {
+  GlobalSearchParams params;
+  params.w1 = 0.0;
+  params.w2 = 1.0;
+  return params;
+}
+
 // Eq. 7's loop term measures the miss in the earlier scan's frame through the loop's weight:
 // along the direction the match cannot pin, the later pose may land off at little cost.
 TEST(GlobalSearchProblemTest, TheLoopsWeightDiscountsAMissAlongWhatTheMatchCouldNotPin) {
@@ -223,9 +231,7 @@ TEST(GlobalSearchProblemTest, TheLoopsWeightDiscountsAMissAlongWhatTheMatchCould
   const Dataset& log = scene.log;
   const std::vector<Pose2>& poses = scene.poses;
   const HitCountGrid& empty = scene.empty;
-  GlobalSearchParams params;
-  params.w1 = 0.0;
-  params.w2 = 1.0;
+  const GlobalSearchParams params = LoopTermOnly();
   // The loop puts the later pose 0.3 m back along the earlier scan's x axis from where it is.
   const Eigen::Vector2d expected =
       poses[25].translation() - Eigen::Rotation2Dd(poses[5].theta()) * Eigen::Vector2d(0.3, 0.0);
@@ -250,9 +256,7 @@ TEST(GlobalSearchProblemTest, AHeadingMissCountsByHowFarItTurnsTheLaterScansRetu
   const Dataset& log = scene.log;
   const std::vector<Pose2>& poses = scene.poses;
   const HitCountGrid& empty = scene.empty;
-  GlobalSearchParams params;
-  params.w1 = 0.0;
-  params.w2 = 1.0;
+  const GlobalSearchParams params = LoopTermOnly();
   double squares = 0.0;
   const std::vector<Eigen::Vector2d> returns = ReturnPoints(log.scans[25]);
   ASSERT_FALSE(returns.empty());
