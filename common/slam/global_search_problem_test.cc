@@ -205,6 +205,17 @@ struct LoopScene {
   Dataset log;
   std::vector<Pose2> poses;
   HitCountGrid empty{0.05, Eigen::Vector2d(-2, -2), 600, 460};
+
+  // Eq. 7 of the stretch [10, 30) as it stands, with its loop term alone at weight 1.
+  double LoopTerm(const LoopConstraint& loop) const {
+    GlobalSearchParams params;
+    params.w1 = 0.0;
+    params.w2 = 1.0;
+    const GlobalSearchProblem problem(log.scans, poses, 10, 30, empty, params, loop);
+    std::vector<double> fitness(2);
+    problem.Evaluate(problem.Identity(), fitness);
+    return fitness[1];
+  }
 };
 
 LoopScene MakeLoopScene() {
@@ -216,59 +227,36 @@ LoopScene MakeLoopScene() {
   return scene;
 }
 
-// Eq. 7 with its loop term alone, at weight 1.
-GlobalSearchParams LoopTermOnly() {
-  GlobalSearchParams params;
-  params.w1 = 0.0;
-  params.w2 = 1.0;
-  return params;
-}
-
 // Eq. 7's loop term measures the miss in the earlier scan's frame through the loop's weight:
 // along the direction the match cannot pin, the later pose may land off at little cost.
 TEST(GlobalSearchProblemTest, TheLoopsWeightDiscountsAMissAlongWhatTheMatchCouldNotPin) {
   const LoopScene scene = MakeLoopScene();
-  const Dataset& log = scene.log;
   const std::vector<Pose2>& poses = scene.poses;
-  const HitCountGrid& empty = scene.empty;
-  const GlobalSearchParams params = LoopTermOnly();
   // The loop puts the later pose 0.3 m back along the earlier scan's x axis from where it is.
   const Eigen::Vector2d expected =
       poses[25].translation() - Eigen::Rotation2Dd(poses[5].theta()) * Eigen::Vector2d(0.3, 0.0);
   LoopConstraint loop{5, 25, poses[5].inverse() * Pose2(expected, poses[25].theta())};
-  const auto eq7 = [&](const LoopConstraint& l) {
-    const GlobalSearchProblem problem(log.scans, poses, 10, 30, empty, params, l);
-    std::vector<double> fitness(2);
-    problem.Evaluate(problem.Identity(), fitness);
-    return fitness[1];
-  };
-  EXPECT_NEAR(eq7(loop), 0.3, 1e-9);   // the identity: 002's distance
-  loop.weight << 0.01, 0.0, 0.0, 1.0;  // x barely pinned
-  EXPECT_NEAR(eq7(loop), 0.03, 1e-9);
+  EXPECT_NEAR(scene.LoopTerm(loop), 0.3, 1e-9);  // the identity: 002's distance
+  loop.weight << 0.01, 0.0, 0.0, 1.0;            // x barely pinned
+  EXPECT_NEAR(scene.LoopTerm(loop), 0.03, 1e-9);
   loop.weight << 1.0, 0.0, 0.0, 0.01;  // y barely pinned: the miss along x counts in full
-  EXPECT_NEAR(eq7(loop), 0.3, 1e-9);
+  EXPECT_NEAR(scene.LoopTerm(loop), 0.3, 1e-9);
 }
 
 // A loop closed in place but not in heading leaves the later scan's walls turned: eq. 7 counts
 // the turn by how far it moves the scan's returns, their RMS range times the angle.
 TEST(GlobalSearchProblemTest, AHeadingMissCountsByHowFarItTurnsTheLaterScansReturns) {
   const LoopScene scene = MakeLoopScene();
-  const Dataset& log = scene.log;
   const std::vector<Pose2>& poses = scene.poses;
-  const HitCountGrid& empty = scene.empty;
-  const GlobalSearchParams params = LoopTermOnly();
   double squares = 0.0;
-  const std::vector<Eigen::Vector2d> returns = ReturnPoints(log.scans[25]);
+  const std::vector<Eigen::Vector2d> returns = ReturnPoints(scene.log.scans[25]);
   ASSERT_FALSE(returns.empty());
   for (const Eigen::Vector2d& p : returns) squares += p.squaredNorm();
   const double rms = std::sqrt(squares / static_cast<double>(returns.size()));
   for (const double turn : {0.1, -0.05}) {
     const LoopConstraint loop{
         5, 25, poses[5].inverse() * Pose2(poses[25].translation(), poses[25].theta() + turn)};
-    const GlobalSearchProblem problem(log.scans, poses, 10, 30, empty, params, loop);
-    std::vector<double> fitness(2);
-    problem.Evaluate(problem.Identity(), fitness);
-    EXPECT_NEAR(fitness[1], rms * std::abs(turn), 1e-9) << turn;
+    EXPECT_NEAR(scene.LoopTerm(loop), rms * std::abs(turn), 1e-9) << turn;
   }
 }
 
