@@ -261,8 +261,9 @@ std::optional<std::size_t> PickGlobalSolution(const Eigen::MatrixXd& fitness, do
 }
 
 bool WorthApplying(std::span<const double, 2> before, std::span<const double, 2> after,
-                   double min_eq7_gain) {
-  return after[0] < before[0] || after[1] < (1.0 - min_eq7_gain) * before[1];
+                   double min_eq6_gain, double min_eq7_gain) {
+  return after[0] < before[0] - min_eq6_gain * std::abs(before[0]) ||
+         after[1] < (1.0 - min_eq7_gain) * before[1];
 }
 
 }  // namespace evoslam

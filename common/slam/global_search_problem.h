@@ -130,10 +130,11 @@ std::optional<std::size_t> PickGlobalSolution(
     const Eigen::MatrixXd& fitness, double max_first = std::numeric_limits<double>::infinity());
 
 // Whether a picked correction scoring `after` (eq. 6, eq. 7 negated, as minimised) is worth
-// applying to a stretch scoring `before`: it sharpens the map, or it lowers eq. 7 by more than
-// the fraction `min_eq7_gain` of what it was.
+// applying to a stretch scoring `before`: it sharpens the map (eq. 6) by more than the fraction
+// `min_eq6_gain` of its score, or it lowers eq. 7 by more than the fraction `min_eq7_gain` of
+// what it was.
 bool WorthApplying(std::span<const double, 2> before, std::span<const double, 2> after,
-                   double min_eq7_gain);
+                   double min_eq6_gain, double min_eq7_gain);
 
 }  // namespace evoslam
 

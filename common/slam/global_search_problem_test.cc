@@ -329,13 +329,26 @@ TEST(WorthApplyingTest, ABlurringCorrectionMustCloseTheLoopByTheMinimumGain) {
   const double before[2] = {-37.34, 0.897};
   // A seed of the Intel log: the map blurred and eq. 7 barely moved.
   const double barely[2] = {-37.26, 0.894};
-  EXPECT_TRUE(WorthApplying(before, barely, 0.0));
-  EXPECT_FALSE(WorthApplying(before, barely, 0.1));
+  EXPECT_TRUE(WorthApplying(before, barely, 0.0, 0.0));
+  EXPECT_FALSE(WorthApplying(before, barely, 0.0, 0.1));
   const double closed[2] = {-37.26, 0.5};
-  EXPECT_TRUE(WorthApplying(before, closed, 0.1));
+  EXPECT_TRUE(WorthApplying(before, closed, 0.0, 0.1));
   const double sharper[2] = {-37.40, 0.897};  // a sharper map is worth it whatever eq. 7 does
-  EXPECT_TRUE(WorthApplying(before, sharper, 0.1));
-  EXPECT_FALSE(WorthApplying(before, before, 0.0));  // leaving the stretch alone is as good
+  EXPECT_TRUE(WorthApplying(before, sharper, 0.0, 0.1));
+  EXPECT_FALSE(WorthApplying(before, before, 0.0, 0.0));  // leaving the stretch alone is as good
+}
+
+TEST(WorthApplyingTest, ASharperMapMustBeSharperByTheMinimumGain) {
+  // A search without a loop on the simulated office cluster: 0.18 % sharper, the trajectory
+  // centimetres worse.
+  const double before[2] = {-16.0856, 0.0};
+  const double slightly[2] = {-16.1152, 0.0};
+  EXPECT_TRUE(WorthApplying(before, slightly, 0.0, 0.0));
+  EXPECT_FALSE(WorthApplying(before, slightly, 0.01, 0.0));
+  const double much[2] = {-16.4, 0.0};  // 2 % sharper
+  EXPECT_TRUE(WorthApplying(before, much, 0.01, 0.0));
+  const double freed[2] = {-16.0856, -1.0};  // the path crosses fewer obstacles
+  EXPECT_TRUE(WorthApplying(before, freed, 0.01, 0.0));
 }
 
 }  // namespace

@@ -42,6 +42,8 @@ void ValidateRssSlamParams(const RssSlamParams& params) {
       !(params.loop_bound_scale >= 0.0) || !(params.sharpness_tolerance >= 0.0)) {
     throw Error("global search: the search bounds must be finite and not negative");
   }
+  if (!(params.min_periodic_eq6_gain >= 0.0 && params.min_periodic_eq6_gain < 1.0))
+    throw Error("global search: the minimum eq. 6 gain without a loop must be in [0, 1)");
   if (!(params.min_eq7_gain >= 0.0 && params.min_eq7_gain < 1.0))
     throw Error("global search: the minimum eq. 7 gain must be in [0, 1)");
   if (params.global_search) {
@@ -175,7 +177,9 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
     const auto best = static_cast<Eigen::Index>(pick.value_or(0));
     record.after[0] = all.f(0, best);
     record.after[1] = all.f(1, best);
-    record.applied = pick && WorthApplying(record.before, record.after, params.min_eq7_gain);
+    record.applied =
+        pick && WorthApplying(record.before, record.after,
+                              loop ? 0.0 : params.min_periodic_eq6_gain, params.min_eq7_gain);
     if (record.applied) {
       const std::vector<Pose2> corrected = problem.Apply(all.x.col(best));
       map = std::move(base);

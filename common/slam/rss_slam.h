@@ -43,6 +43,11 @@ struct RssSlamParams {
   // fraction to be applied; 0: any improvement will do. A search that barely closes its loop
   // while it blurs the map is more likely bending the path to a place it never was.
   double min_eq7_gain = 0.0;
+  // A search without a loop (every global_every scans) has only the map to go by, and eq. 6
+  // cannot see below a cell: bending a stretch by millimetres sharpens it by a few thousandths
+  // while it moves the trajectory centimetres off. Such a correction is applied only if it
+  // sharpens the map by more than this fraction (or frees the path, eq. 7).
+  double min_periodic_eq6_gain = 0.01;
   std::size_t generations = 100;  // 002
   std::size_t islands = 2;        // each runs 002's (mu+lambda) preset
   std::string preset = "mu+lambda-002";

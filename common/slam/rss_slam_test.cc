@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -87,8 +88,10 @@ TEST(RssSlamTest, GlobalSearchesRunEveryKStepsOverTheStepsSinceTheLast) {
     EXPECT_EQ(g.last - g.first, params.global_every);
     next_first = g.last;
     EXPECT_GT(g.evaluations, 0u);
-    // Applied exactly when the trajectory as it stood does not dominate the correction.
-    EXPECT_EQ(g.applied, g.after[0] < g.before[0] || g.after[1] < g.before[1]);
+    // Applied exactly when the correction sharpens the map by the minimum gain or frees the path.
+    EXPECT_EQ(g.applied,
+              g.after[0] < g.before[0] - params.min_periodic_eq6_gain * std::abs(g.before[0]) ||
+                  g.after[1] < g.before[1]);
   }
   EXPECT_EQ(periodic, 80 / params.global_every);
   EXPECT_EQ(r.global_evaluations, [&] {

@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "common/transform/pose2_frame.h"
 #include "common/util/error.h"
@@ -22,12 +23,12 @@ struct Normal {
 };
 
 Normal NormalEquations(const HitCountGrid& map, std::span<const Eigen::Vector2d> returns,
-                       const Pose2& pose) {
+                       const Pose2& pose, double wall_share) {
   const Pose2Frame frame(pose);
   Normal n;
   for (const Eigen::Vector2d& p : returns) {
     const Eigen::Vector2d q = frame * p;
-    const auto s = SampleOccupancy(map, q);
+    const auto s = SampleOccupancy(map, q, wall_share);
     if (!s) continue;
     const double r = 1.0 - s->value;
     const Eigen::Vector2d arm = q - pose.translation();
@@ -40,6 +41,18 @@ Normal NormalEquations(const HitCountGrid& map, std::span<const Eigen::Vector2d>
   return n;
 }
 
+// The largest count among the four cells (x, y) to (x + 1, y + 1) and the cells around them: a
+// 4 x 4 block, clipped to the grid.
+double StrongestCount(const HitCountGrid& map, int x, int y) {
+  std::uint32_t strongest = 0;
+  for (int cy = std::max(y - 1, 0); cy <= std::min(y + 2, map.height() - 1); ++cy) {
+    for (int cx = std::max(x - 1, 0); cx <= std::min(x + 2, map.width() - 1); ++cx) {
+      strongest = std::max(strongest, map.count(cx, cy));
+    }
+  }
+  return strongest;
+}
+
 }  // namespace
 
 void ValidateScanRefinementParams(const ScanRefinementParams& p) {
@@ -48,10 +61,12 @@ void ValidateScanRefinementParams(const ScanRefinementParams& p) {
     throw Error("scan refinement: the largest shift must be finite and not negative");
   if (!(p.max_turn >= 0.0) || !std::isfinite(p.max_turn))
     throw Error("scan refinement: the largest turn must be finite and not negative");
+  if (!(p.wall_share >= 0.0 && p.wall_share <= 1.0))
+    throw Error("scan refinement: the wall share must lie in [0, 1]");
 }
 
 std::optional<OccupancySample> SampleOccupancy(const HitCountGrid& map,
-                                               const Eigen::Vector2d& point) {
+                                               const Eigen::Vector2d& point, double wall_share) {
   const Eigen::Vector2d u = (point - map.origin()) / map.resolution() - Eigen::Vector2d(0.5, 0.5);
   if (!(u.x() >= 0.0 && u.y() >= 0.0 && u.x() < map.width() - 1 && u.y() < map.height() - 1)) {
     return std::nullopt;
@@ -61,8 +76,15 @@ std::optional<OccupancySample> SampleOccupancy(const HitCountGrid& map,
   const std::size_t i00 = static_cast<std::size_t>(y) * static_cast<std::size_t>(map.width()) +
                           static_cast<std::size_t>(x);
   const std::size_t i01 = i00 + static_cast<std::size_t>(map.width());
-  const double m00 = map.occupied(i00), m10 = map.occupied(i00 + 1);
-  const double m01 = map.occupied(i01), m11 = map.occupied(i01 + 1);
+  double m00 = map.occupied(i00), m10 = map.occupied(i00 + 1);
+  double m01 = map.occupied(i01), m11 = map.occupied(i01 + 1);
+  if (wall_share > 0.0) {
+    const double full = wall_share * StrongestCount(map, x, y);
+    if (full > 0.0) {
+      const auto level = [&](std::size_t i) { return std::min(1.0, map.count(i) / full); };
+      m00 = level(i00), m10 = level(i00 + 1), m01 = level(i01), m11 = level(i01 + 1);
+    }
+  }
   OccupancySample s;
   s.value = (1 - fy) * ((1 - fx) * m00 + fx * m10) + fy * ((1 - fx) * m01 + fx * m11);
   s.gradient = Eigen::Vector2d((1 - fy) * (m10 - m00) + fy * (m11 - m01),
@@ -85,7 +107,7 @@ Pose2 RefineScanPose(const HitCountGrid& map, std::span<const Eigen::Vector2d> r
   if (returns.empty() || !(range > 0.0)) return start;
   const Eigen::Vector3d scale(1.0, 1.0, static_cast<double>(returns.size()) / range);
   const double max_shift = params.max_shift_cells * map.resolution();
-  Normal at = NormalEquations(map, returns, start);
+  Normal at = NormalEquations(map, returns, start, params.wall_share);
   for (std::size_t it = 0; it < params.iterations; ++it) {
     const Eigen::Matrix3d h = scale.asDiagonal() * at.h * scale.asDiagonal();
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(h);
@@ -106,7 +128,7 @@ Pose2 RefineScanPose(const HitCountGrid& map, std::span<const Eigen::Vector2d> r
     const double shift = next.head<2>().norm();
     if (shift > max_shift) next.head<2>() *= max_shift / shift;
     next.z() = std::clamp(next.z(), -params.max_turn, params.max_turn);
-    const Normal there = NormalEquations(map, returns, moved(next));
+    const Normal there = NormalEquations(map, returns, moved(next), params.wall_share);
     if (!(there.cost < at.cost)) break;
     offset = next;
     at = there;

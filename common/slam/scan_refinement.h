@@ -11,10 +11,10 @@
 
 namespace evoslam {
 
-// Gauss-Newton alignment of a scan to the map's occupied cells, bilinearly interpolated between
-// cell centres (as Hector SLAM aligns scans). Eq. 1 is flat within a cell, so the PSO places a
-// step to a cell at best; the interpolated occupancy has a slope inside the cells next to a wall,
-// which the refinement follows. Returns that fall where the map has nothing pull nowhere.
+// Gauss-Newton alignment of a scan to the map's occupancy, bilinearly interpolated between cell
+// centres (as Hector SLAM aligns scans). Eq. 1 is flat within a cell, so the PSO places a step to
+// a cell at best; the interpolated occupancy has a slope inside the cells next to a wall, which
+// the refinement follows. Returns that fall where the map has nothing pull nowhere.
 struct ScanRefinementParams {
   std::size_t iterations = 10;  // 0: no refinement
   // How far the refined pose may move from the start, in map cells: the refinement chooses a
@@ -22,19 +22,27 @@ struct ScanRefinementParams {
   // pins nothing down, a looser bound let the pose slide (docs/rss_slam.md).
   double max_shift_cells = 0.5;
   double max_turn = 0.02;  // rad
+  // How occupied a cell reads: its count against this share of the strongest count among the 4 x
+  // 4 cells around the point sampled, at most 1. Range noise scatters a few of a wall's hits into
+  // the cells either side of it, and the cells it passes through collect the rest, so counted
+  // this way the occupancy peaks along the wall and the refinement pulls the returns onto that
+  // line; read as 1 wherever a count is above 0 (a share of 0), a wall two or three cells thick is
+  // flat across. A share below 1 keeps a wall's cells, whose counts vary along it, level with one
+  // another, so that they do not push a pose along a corridor (docs/rss_slam.md).
+  double wall_share = 0.3;
 };
 
 void ValidateScanRefinementParams(const ScanRefinementParams& params);
 
-// The map's occupancy at a world point, interpolated between the four nearest cell centres (1 on
-// occupied cells, 0 elsewhere), and its gradient per metre; nullopt where the four cells are not
-// all in the grid.
+// The map's occupancy at a world point, interpolated between the four nearest cell centres (each
+// read as ScanRefinementParams::wall_share says), and its gradient per metre; nullopt where the
+// four cells are not all in the grid.
 struct OccupancySample {
   double value = 0.0;
   Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
 };
 std::optional<OccupancySample> SampleOccupancy(const HitCountGrid& map,
-                                               const Eigen::Vector2d& point);
+                                               const Eigen::Vector2d& point, double wall_share);
 
 // `start` moved to minimise the sum over `returns` (in the laser's frame) of (1 - occupancy)^2,
 // within params.max_shift_cells and params.max_turn of it. Stops when a step does not lower the

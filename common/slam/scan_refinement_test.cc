@@ -30,26 +30,66 @@ double Distance(const Pose2& a, const Pose2& b) {
   return (a.translation() - b.translation()).norm();
 }
 
-TEST(SampleOccupancyTest, InterpolatesBetweenCellCentres) {
+TEST(SampleOccupancyTest, InterpolatesBetweenCellCentresOfABinaryOccupancy) {
   HitCountGrid map(0.1, Eigen::Vector2d(0.0, 0.0), 10, 10);
   map.Add(Eigen::Vector2d(0.55, 0.55));  // cell (5, 5), centred at (0.55, 0.55)
-  const auto centre = SampleOccupancy(map, Eigen::Vector2d(0.55, 0.55));
+  const auto centre = SampleOccupancy(map, Eigen::Vector2d(0.55, 0.55), 0.0);
   ASSERT_TRUE(centre);
   EXPECT_DOUBLE_EQ(centre->value, 1.0);
   // A quarter of a cell to the right and half a cell up: 0.75 * 0.5 of the occupied corner.
-  const auto off = SampleOccupancy(map, Eigen::Vector2d(0.575, 0.6));
+  const auto off = SampleOccupancy(map, Eigen::Vector2d(0.575, 0.6), 0.0);
   ASSERT_TRUE(off);
   EXPECT_NEAR(off->value, 0.375, 1e-12);
   EXPECT_NEAR(off->gradient.x(), -0.5 / 0.1, 1e-9);   // falls to the right
   EXPECT_NEAR(off->gradient.y(), -0.75 / 0.1, 1e-9);  // and upwards
-  const auto empty = SampleOccupancy(map, Eigen::Vector2d(0.2, 0.2));
+  const auto empty = SampleOccupancy(map, Eigen::Vector2d(0.2, 0.2), 0.0);
   ASSERT_TRUE(empty);
   EXPECT_EQ(empty->value, 0.0);
   EXPECT_EQ(empty->gradient, Eigen::Vector2d::Zero());
   // The four cells around the point must lie in the grid.
-  EXPECT_FALSE(SampleOccupancy(map, Eigen::Vector2d(0.02, 0.5)));
-  EXPECT_FALSE(SampleOccupancy(map, Eigen::Vector2d(0.5, 0.97)));
-  EXPECT_FALSE(SampleOccupancy(map, Eigen::Vector2d(std::nan(""), 0.5)));
+  EXPECT_FALSE(SampleOccupancy(map, Eigen::Vector2d(0.02, 0.5), 0.0));
+  EXPECT_FALSE(SampleOccupancy(map, Eigen::Vector2d(0.5, 0.97), 0.0));
+  EXPECT_FALSE(SampleOccupancy(map, Eigen::Vector2d(std::nan(""), 0.5), 0.0));
+}
+
+// Counts across a wall along x, in the cells x = 3 to 6 of rows 4 to 6: row 5 holds the wall,
+// rows 4 and 6 the few hits range noise scattered, and along the wall the counts vary.
+HitCountGrid NoisyWall() {
+  HitCountGrid map(0.1, Eigen::Vector2d(0.0, 0.0), 10, 10);
+  for (int x = 3; x <= 6; ++x) {
+    const Eigen::Vector2d centre(0.05 + 0.1 * x, 0.55);
+    map.Add(centre, x == 4 ? 12 : 20);
+    map.Add(centre + Eigen::Vector2d(0.0, -0.1), 2);
+    map.Add(centre + Eigen::Vector2d(0.0, 0.1), 3);
+  }
+  return map;
+}
+
+TEST(SampleOccupancyTest, ReadAgainstTheStrongestCountNearbyAWallPeaksAlongItsMiddle) {
+  const HitCountGrid map = NoisyWall();
+  // With a share of 0.3 the wall's cells (12 and 20 against 20) read 1, the noise either side
+  // 2 / 6 and 3 / 6 of that.
+  const auto wall = SampleOccupancy(map, Eigen::Vector2d(0.45, 0.55), 0.3);
+  ASSERT_TRUE(wall);
+  EXPECT_DOUBLE_EQ(wall->value, 1.0);
+  EXPECT_NEAR(wall->gradient.x(), 0.0, 1e-9);  // level along the wall, though its counts vary
+  const auto below = SampleOccupancy(map, Eigen::Vector2d(0.45, 0.50), 0.3);
+  ASSERT_TRUE(below);
+  EXPECT_NEAR(below->value, 0.5 * (1.0 + 2.0 / 6.0), 1e-12);
+  EXPECT_NEAR(below->gradient.y(), (1.0 - 2.0 / 6.0) / 0.1, 1e-9);  // rises towards the wall
+  const auto above = SampleOccupancy(map, Eigen::Vector2d(0.45, 0.60), 0.3);
+  ASSERT_TRUE(above);
+  EXPECT_NEAR(above->gradient.y(), (3.0 / 6.0 - 1.0) / 0.1, 1e-9);  // falls away from it
+  // Read as binary, the three rows are one flat plateau.
+  const auto flat = SampleOccupancy(map, Eigen::Vector2d(0.45, 0.50), 0.0);
+  ASSERT_TRUE(flat);
+  EXPECT_DOUBLE_EQ(flat->value, 1.0);
+  EXPECT_EQ(flat->gradient, Eigen::Vector2d::Zero());
+  // A share of 1 reads the counts themselves against the strongest, along the wall too.
+  const auto raw = SampleOccupancy(map, Eigen::Vector2d(0.45, 0.55), 1.0);
+  ASSERT_TRUE(raw);
+  EXPECT_NEAR(raw->value, 12.0 / 20.0, 1e-12);
+  EXPECT_NEAR(raw->gradient.x(), (20.0 - 12.0) / 20.0 / 0.1, 1e-9);
 }
 
 TEST(RefineScanPoseTest, MovesAPoseOffByLessThanACellTowardsTheTruth) {
@@ -131,6 +171,34 @@ TEST(RefineScanPoseTest, AlongACorridorThePoseKeepsItsPlace) {
   EXPECT_NEAR(refined.x(), start.x(), 1e-9);
 }
 
+// The corridor's walls as range noise leaves them: a row of cells counted often with a row either
+// side counted rarely. Read as binary, a wall is three cells thick and flat across, and a pose
+// off by 2 cm across the corridor has nothing to follow; against the strongest count, each wall
+// peaks along its middle and the refinement finds it.
+TEST(RefineScanPoseTest, AcrossAThickWallThePoseFollowsTheCountsToItsMiddle) {
+  constexpr double kWall = 1.025;
+  const LineMap corridor(
+      std::vector<Segment>{{{-20.0, -kWall}, {20.0, -kWall}}, {{-20.0, kWall}, {20.0, kWall}}});
+  HitCountGrid map(0.05, Eigen::Vector2d(-5.0, -3.0), 200, 120);
+  for (int x = 0; x < map.width(); ++x) {
+    for (const double y : {-kWall, kWall}) {
+      const Eigen::Vector2d centre(-4.975 + 0.05 * x, y);
+      map.Add(centre, 10);
+      map.Add(centre + Eigen::Vector2d(0.0, 0.05), 1);
+      map.Add(centre - Eigen::Vector2d(0.0, 0.05), 1);
+    }
+  }
+  const Pose2 truth(0.3, 0.0, 0.0);
+  const std::vector<Eigen::Vector2d> returns =
+      ReturnPoints(testing::ScanFrom(corridor, truth, 181, 4.0));
+  const Pose2 start(0.3, 0.02, 0.0);
+  ScanRefinementParams params;
+  const Pose2 refined = RefineScanPose(map, returns, start, params);
+  EXPECT_LT(std::abs(refined.y() - truth.y()), 0.002) << refined;
+  params.wall_share = 0.0;
+  EXPECT_EQ(RefineScanPose(map, returns, start, params), start);
+}
+
 TEST(ScanRefinementParamsTest, RejectsLimitsThatAreNegativeOrNotFinite) {
   ScanRefinementParams p;
   EXPECT_NO_THROW(ValidateScanRefinementParams(p));
@@ -140,6 +208,13 @@ TEST(ScanRefinementParamsTest, RejectsLimitsThatAreNegativeOrNotFinite) {
   p.max_turn = std::numeric_limits<double>::infinity();
   EXPECT_THROW(ValidateScanRefinementParams(p), Error);
   p.max_turn = 0.02;
+  p.iterations = 10;
+  p.wall_share = 1.5;
+  EXPECT_THROW(ValidateScanRefinementParams(p), Error);
+  p.wall_share = std::nan("");
+  EXPECT_THROW(ValidateScanRefinementParams(p), Error);
+  p.wall_share = 0.0;
+  EXPECT_NO_THROW(ValidateScanRefinementParams(p));
   p.iterations = 100000;
   EXPECT_THROW(ValidateScanRefinementParams(p), Error);
 }

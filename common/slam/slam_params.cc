@@ -48,6 +48,7 @@ RssSlamParams RssSlamParamsFromProto(const proto::SlamParams& p) {
   if (p.has_local_refine_max_shift_cells())
     l.refine.max_shift_cells = p.local_refine_max_shift_cells();
   if (p.has_local_refine_max_turn_rad()) l.refine.max_turn = p.local_refine_max_turn_rad();
+  if (p.has_local_refine_wall_share()) l.refine.wall_share = p.local_refine_wall_share();
   if (p.has_local_only()) r.global_search = !p.local_only();
   if (p.has_global_every()) r.global_every = p.global_every();
   GlobalSearchParams& g = r.global;
@@ -66,6 +67,7 @@ RssSlamParams RssSlamParamsFromProto(const proto::SlamParams& p) {
   if (p.has_loop_bound_scale()) r.loop_bound_scale = p.loop_bound_scale();
   if (p.has_sharpness_tolerance()) r.sharpness_tolerance = p.sharpness_tolerance();
   if (p.has_min_eq7_gain()) r.min_eq7_gain = p.min_eq7_gain();
+  if (p.has_min_periodic_eq6_gain()) r.min_periodic_eq6_gain = p.min_periodic_eq6_gain();
   LoopDetectionParams& d = r.loops;
   if (p.has_revisit_radius_m()) d.revisit_radius = p.revisit_radius_m();
   if (p.has_min_gap_scans()) d.min_gap = p.min_gap_scans();
@@ -111,6 +113,7 @@ proto::SlamParams CompleteSlamParams(const proto::SlamParams& given) {
   p.set_local_refine_iterations(static_cast<std::uint32_t>(l.refine.iterations));
   p.set_local_refine_max_shift_cells(l.refine.max_shift_cells);
   p.set_local_refine_max_turn_rad(l.refine.max_turn);
+  p.set_local_refine_wall_share(l.refine.wall_share);
   p.set_local_only(!r.global_search);
   p.set_global_every(static_cast<std::uint32_t>(r.global_every));
   const GlobalSearchParams& g = r.global;
@@ -129,6 +132,7 @@ proto::SlamParams CompleteSlamParams(const proto::SlamParams& given) {
   p.set_loop_bound_scale(r.loop_bound_scale);
   p.set_sharpness_tolerance(r.sharpness_tolerance);
   p.set_min_eq7_gain(r.min_eq7_gain);
+  p.set_min_periodic_eq6_gain(r.min_periodic_eq6_gain);
   const LoopDetectionParams& d = r.loops;
   p.set_revisit_radius_m(d.revisit_radius);
   p.set_min_gap_scans(static_cast<std::uint32_t>(d.min_gap));

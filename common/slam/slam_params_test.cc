@@ -50,6 +50,8 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   p.set_local_refine_iterations(0);
   p.set_local_refine_max_shift_cells(1.5);
   p.set_local_refine_max_turn_rad(0.03);
+  p.set_local_refine_wall_share(0.0);
+  p.set_min_periodic_eq6_gain(0.0);
   p.set_min_eq7_gain(0.1);
   p.set_match_window_per_m(0.0);
   p.set_max_match_window_m(2.5);
@@ -68,6 +70,8 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   EXPECT_EQ(r.local.turn_error_per_rad, 0.0);
   EXPECT_EQ(r.local.refine.iterations, 0u);
   EXPECT_EQ(r.local.refine.max_shift_cells, 1.5);
+  EXPECT_EQ(r.local.refine.wall_share, 0.0);
+  EXPECT_EQ(r.min_periodic_eq6_gain, 0.0);
   EXPECT_EQ(r.local.refine.max_turn, 0.03);
   EXPECT_EQ(r.min_eq7_gain, 0.1);
   EXPECT_EQ(r.loops.match_window_per_metre, 0.0);
@@ -112,8 +116,14 @@ TEST(SlamParamsTest, BadFieldsAreNamed) {
   p.set_local_refine_max_shift_cells(-0.5);
   EXPECT_NE(ErrorOf(p).find("largest shift"), std::string::npos);
   p = {};
+  p.set_local_refine_wall_share(2.0);
+  EXPECT_NE(ErrorOf(p).find("wall share"), std::string::npos);
+  p = {};
   p.set_min_eq7_gain(1.0);
   EXPECT_NE(ErrorOf(p).find("eq. 7 gain"), std::string::npos);
+  p = {};
+  p.set_min_periodic_eq6_gain(-0.1);
+  EXPECT_NE(ErrorOf(p).find("eq. 6 gain"), std::string::npos);
   p = {};
   p.set_match_window_per_m(-0.01);
   EXPECT_NE(ErrorOf(p).find("growth per metre"), std::string::npos);
