@@ -22,13 +22,13 @@ struct ScanRefinementParams {
   // pins nothing down, a looser bound let the pose slide (docs/rss_slam.md).
   double max_shift_cells = 0.5;
   double max_turn = 0.02;  // rad
-  // How occupied a cell reads: its count against this share of the strongest count among the 4 x
-  // 4 cells around the point sampled, at most 1. Range noise scatters a few of a wall's hits into
-  // the cells either side of it, and the cells it passes through collect the rest, so counted
-  // this way the occupancy peaks along the wall and the refinement pulls the returns onto that
-  // line; read as 1 wherever a count is above 0 (a share of 0), a wall two or three cells thick is
-  // flat across. A share below 1 keeps a wall's cells, whose counts vary along it, level with one
-  // another, so that they do not push a pose along a corridor (docs/rss_slam.md).
+  // How occupied a cell reads: its count against this share of the strongest count in the block
+  // of 4 by 4 cells around the point sampled, at most 1. Range noise scatters a few of a wall's
+  // hits into the cells either side of it, and the cells it passes through collect the rest, so
+  // counted this way the occupancy peaks along the wall and the refinement pulls the returns onto
+  // that line; read as 1 wherever a count is above 0 (a share of 0), a wall two or three cells
+  // thick is flat across. A share below 1 keeps a wall's cells, whose counts vary along it, level
+  // with one another, so that they do not push a pose along a corridor (docs/rss_slam.md).
   double wall_share = 0.3;
 };
 
