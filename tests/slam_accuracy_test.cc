@@ -150,7 +150,7 @@ TEST(RssSlamAccuracyTest, MapsTheOfficeClusterFromDriftingOdometry) {
   // one 5 cm cell, which neither eq. 1 nor eq. 6 can see below (docs/rss_slam.md). The global
   // searches must at least not undo it: 0.037 m local, 0.037 m with them when this was written
   // (no loop found, and no search sharpened the map by the 1 % a correction without a loop
-  // needs; applied, the two best sharpened it by 0.2 % and took the error to 0.116 m).
+  // needs; applied, the first two, each about 0.2 % sharper, took the error to 0.116 m).
   EXPECT_LT(slam_ate, 1.2 * local_ate) << "local " << local_ate << " m, SLAM " << slam_ate;
 }
 
