@@ -76,15 +76,13 @@ std::optional<OccupancySample> SampleOccupancy(const HitCountGrid& map,
   const std::size_t i00 = static_cast<std::size_t>(y) * static_cast<std::size_t>(map.width()) +
                           static_cast<std::size_t>(x);
   const std::size_t i01 = i00 + static_cast<std::size_t>(map.width());
-  double m00 = map.occupied(i00), m10 = map.occupied(i00 + 1);
-  double m01 = map.occupied(i01), m11 = map.occupied(i01 + 1);
-  if (wall_share > 0.0) {
-    const double full = wall_share * StrongestCount(map, x, y);
-    if (full > 0.0) {
-      const auto level = [&](std::size_t i) { return std::min(1.0, map.count(i) / full); };
-      m00 = level(i00), m10 = level(i00 + 1), m01 = level(i01), m11 = level(i01 + 1);
-    }
-  }
+  // Binary with a share of 0, and where the block holds no count (then every cell reads 0).
+  const double full = wall_share > 0.0 ? wall_share * StrongestCount(map, x, y) : 0.0;
+  const auto level = [&](std::size_t i) -> double {
+    return full > 0.0 ? std::min(1.0, map.count(i) / full) : map.occupied(i);
+  };
+  const double m00 = level(i00), m10 = level(i00 + 1);
+  const double m01 = level(i01), m11 = level(i01 + 1);
   OccupancySample s;
   s.value = (1 - fy) * ((1 - fx) * m00 + fx * m10) + fy * ((1 - fx) * m01 + fx * m11);
   s.gradient = Eigen::Vector2d((1 - fy) * (m10 - m00) + fy * (m11 - m01),
