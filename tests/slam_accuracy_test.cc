@@ -6,7 +6,9 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <span>
+#include <string>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -203,17 +205,26 @@ TEST(RssSlamAccuracyTest, ACorrectionThatBlursTheMapIsAppliedOnlyForTheMinimumEq
   EXPECT_GT(refused, 0u) << "no search was refused for too small a gain: the test shows nothing";
 }
 
+// A raw log of ../shared/data and its relations; nullopt when the data is absent.
+struct RealLog {
+  Dataset log;
+  std::vector<Relation> relations;
+};
+std::optional<RealLog> ReadRealLog(const std::string& name) {
+  const std::filesystem::path dir(EVOSLAM_DATA_DIR);
+  if (!std::filesystem::exists(dir / (name + ".clf.bz2"))) return std::nullopt;
+  return RealLog{ReadCarmen(dir / (name + ".clf.bz2")), ReadRelations(dir / (name + ".relations"))};
+}
+
 // The first 3,000 scans of the Intel lab's raw log (of 13,631; docs/accuracy.md has the whole
 // log), scored against the relations that fall within them. With 002's fixed cube the local
 // search turns a few fast turns short, and the global searches close the loops that leaves open;
 // with the heading's range growing with the turn, the local search alone does as well.
 TEST(RssSlamAccuracyTest, OnTheIntelLabTheGlobalSearchesOrATurnWideCubeHalveTheFixedCubesError) {
-  const std::filesystem::path dir(EVOSLAM_DATA_DIR);
-  if (!std::filesystem::exists(dir / "intel.clf.bz2")) {
-    GTEST_SKIP() << "real data absent from " << dir;
-  }
-  const Dataset d = ReadCarmen(dir / "intel.clf.bz2");
-  const std::vector<Relation> relations = ReadRelations(dir / "intel.relations");
+  const std::optional<RealLog> intel = ReadRealLog("intel");
+  if (!intel) GTEST_SKIP() << "real data absent from " << EVOSLAM_DATA_DIR;
+  const Dataset& d = intel->log;
+  const std::vector<Relation>& relations = intel->relations;
   constexpr std::size_t kScans = 3000;
   const auto run = [&](double turn_error_per_rad, bool global_search) {
     RssSlamParams params;
@@ -255,12 +266,10 @@ TEST(RssSlamAccuracyTest, OnTheIntelLabTheGlobalSearchesOrATurnWideCubeHalveTheF
 // (0.050 m). Seed 3, when this was written (docs/accuracy.md): 0.039 against 0.093 m over all
 // relations, 0.059 against 0.887 m over those across loops.
 TEST(RssSlamAccuracyTest, OnAcesLoopsOfThousandsOfStepsCloseWhenTheirSearchesBendAllOfThem) {
-  const std::filesystem::path dir(EVOSLAM_DATA_DIR);
-  if (!std::filesystem::exists(dir / "aces.clf.bz2")) {
-    GTEST_SKIP() << "real data absent from " << dir;
-  }
-  const Dataset d = ReadCarmen(dir / "aces.clf.bz2");
-  const std::vector<Relation> relations = ReadRelations(dir / "aces.relations");
+  const std::optional<RealLog> aces = ReadRealLog("aces");
+  if (!aces) GTEST_SKIP() << "real data absent from " << EVOSLAM_DATA_DIR;
+  const Dataset& d = aces->log;
+  const std::vector<Relation>& relations = aces->relations;
   std::vector<Relation> across;
   for (const Relation& r : relations) {
     if (r.t2 - r.t1 > 300.0) across.push_back(r);
@@ -288,13 +297,11 @@ TEST(RssSlamAccuracyTest, OnAcesLoopsOfThousandsOfStepsCloseWhenTheirSearchesBen
 // closer to each other (0.039 against 0.042 m when this was written), and those relations
 // measure the local search.
 TEST(RssSlamAccuracyTest, OnAcesReadingTheCountsAlignsNeighbouringScansCloser) {
-  const std::filesystem::path dir(EVOSLAM_DATA_DIR);
-  if (!std::filesystem::exists(dir / "aces.clf.bz2")) {
-    GTEST_SKIP() << "real data absent from " << dir;
-  }
-  const Dataset d = ReadCarmen(dir / "aces.clf.bz2");
+  const std::optional<RealLog> aces = ReadRealLog("aces");
+  if (!aces) GTEST_SKIP() << "real data absent from " << EVOSLAM_DATA_DIR;
+  const Dataset& d = aces->log;
   std::vector<Relation> near;
-  for (const Relation& r : ReadRelations(dir / "aces.relations")) {
+  for (const Relation& r : aces->relations) {
     if (r.t2 - r.t1 < 20.0) near.push_back(r);
   }
   // The mean over seeds 1 to 4: one seed gains 2 to 12 %.
