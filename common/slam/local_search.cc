@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <limits>
+#include <span>
+#include <string>
+#include <vector>
 
 #include "common/optim/evolve.h"
 #include "common/util/error.h"
@@ -30,6 +33,10 @@ void ValidateLocalSearchParams(const LocalSearchParams& p) {
   if (!(p.turn_error_per_rad >= 0.0) || !std::isfinite(p.turn_error_per_rad))
     throw Error(
         "local search: the heading error per radian turned must be finite and not negative");
+  if (!(p.carried_turn_error >= 0.0) || !std::isfinite(p.carried_turn_error))
+    throw Error(
+        "local search: the share of the previous step's heading correction must be finite and "
+        "not negative");
   if (p.recentres > 100) throw Error("local search: at most 100 recentred searches per step");
   if (!(p.resolution > 0.0)) throw Error("local search: the map resolution must be positive");
   if (!(p.margin >= 0.0)) throw Error("local search: the map margin must not be negative");
@@ -38,9 +45,11 @@ void ValidateLocalSearchParams(const LocalSearchParams& p) {
   ValidateScanRefinementParams(p.refine);
 }
 
-Eigen::Vector3d StepErrorCube(const LocalSearchParams& params, const Pose2& odometry_step) {
+Eigen::Vector3d StepErrorCube(const LocalSearchParams& params, const Pose2& odometry_step,
+                              double previous_turn_correction) {
   Eigen::Vector3d cube = params.max_error;
-  cube.z() += params.turn_error_per_rad * std::abs(odometry_step.theta());
+  cube.z() += params.turn_error_per_rad * std::abs(odometry_step.theta()) +
+              params.carried_turn_error * std::abs(previous_turn_correction);
   return cube;
 }
 
@@ -107,15 +116,26 @@ LaserScan WithinPreviousReach(const LaserScan& scan, const Pose2& predicted,
   return scored;
 }
 
-StepCorrection CorrectLogStep(const HitCountGrid& map, const Dataset& dataset, std::size_t i,
-                              const Pose2& previous_pose, const LocalSearchParams& params,
+StepCorrection CorrectLogStep(const HitCountGrid& map, const Dataset& dataset,
+                              std::span<const Pose2> poses, const LocalSearchParams& params,
                               Rng rng) {
+  const std::size_t i = poses.size();
+  if (i == 0 || i >= dataset.scans.size()) {
+    throw Error("local search: scan " + std::to_string(i) + " has no step to correct");
+  }
   const LaserScan& scan = dataset.scans[i];
   const LaserScan& previous = dataset.scans[i - 1];
+  const Pose2& previous_pose = poses[i - 1];
   const Pose2 step = previous.odometry.inverse() * scan.odometry;
   const Pose2 predicted = previous_pose * step;
+  double previous_turn_correction = 0.0;
+  if (i >= 2) {
+    const Pose2 odometry_before = dataset.scans[i - 2].odometry.inverse() * previous.odometry;
+    const Pose2 taken_before = poses[i - 2].inverse() * previous_pose;
+    previous_turn_correction = (odometry_before.inverse() * taken_before).theta();
+  }
   LocalSearchParams for_step = params;
-  for_step.max_error = StepErrorCube(params, step);
+  for_step.max_error = StepErrorCube(params, step, previous_turn_correction);
   if (params.frontier_margin < 0.0) return CorrectStep(map, scan, predicted, for_step, rng);
   const LaserScan scored =
       WithinPreviousReach(scan, predicted, previous, previous_pose, params.frontier_margin);
@@ -131,14 +151,17 @@ LocalSearchResult RunLocalSearch(const Dataset& dataset, const LocalSearchParams
   LocalSearchResult result;
   const std::size_t n = dataset.scans.size();
   result.trajectory.reserve(n);
-  Pose2 pose = dataset.scans.front().odometry;
+  std::vector<Pose2> poses;
+  poses.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
     const LaserScan& scan = dataset.scans[i];
+    Pose2 pose = scan.odometry;
     if (i > 0) {
-      const StepCorrection c = CorrectLogStep(map, dataset, i, pose, params, root.Stream(i));
+      const StepCorrection c = CorrectLogStep(map, dataset, poses, params, root.Stream(i));
       pose = c.pose;
       result.evaluations += c.evaluations;
     }
+    poses.push_back(pose);
     map.AddScan(scan, pose);
     result.trajectory.push_back({scan.timestamp, pose});
     if (progress) progress(i + 1, n);

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "common/grid/hit_count_grid.h"
@@ -27,6 +28,12 @@ struct LocalSearchParams {
   // grows by this fraction of the turn odometry reports for the step. Without it, fast turns
   // (0.3 rad between two ACES scans) end on the cube's face and leave the map a few degrees off.
   double turn_error_per_rad = 0.6;
+  // When odometry and laser are not read at the same instant, a fast turn's odometry splits the
+  // turn unevenly between two scans: a step whose heading needed a large correction tends to be
+  // followed by one that needs the opposite, beyond a cube sized by the turn odometry reports.
+  // The heading's half-width also grows by this fraction of the previous step's heading
+  // correction (docs/rss_slam.md).
+  double carried_turn_error = 0.5;
   std::size_t particles = 10;  // 002
   std::size_t iterations = 30;
   double inertia = 0.7;
@@ -52,8 +59,10 @@ struct LocalSearchParams {
 
 void ValidateLocalSearchParams(const LocalSearchParams& params);
 
-// The cube the local search corrects a step in, given the step odometry reports.
-Eigen::Vector3d StepErrorCube(const LocalSearchParams& params, const Pose2& odometry_step);
+// The cube the local search corrects a step in, given the step odometry reports and the heading
+// correction the previous step took (rad).
+Eigen::Vector3d StepErrorCube(const LocalSearchParams& params, const Pose2& odometry_step,
+                              double previous_turn_correction);
 
 // The map a log's scans can reach: the odometry's path widened by the laser's range and
 // params.margin.
@@ -74,10 +83,12 @@ StepCorrection CorrectStep(const HitCountGrid& map, const LaserScan& scan, const
 LaserScan WithinPreviousReach(const LaserScan& scan, const Pose2& predicted,
                               const LaserScan& previous, const Pose2& previous_pose, double margin);
 
-// The local search's step for scan i > 0 of a log: its pose corrected from `previous_pose` (scan
-// i - 1's) moved by the odometry's step.
-StepCorrection CorrectLogStep(const HitCountGrid& map, const Dataset& dataset, std::size_t i,
-                              const Pose2& previous_pose, const LocalSearchParams& params, Rng rng);
+// The local search's step for scan i = poses.size() > 0 of a log, `poses` holding the poses of
+// scans [0, i): its pose corrected from scan i - 1's moved by the odometry's step, in the cube
+// that step and the heading correction of the step before it give.
+StepCorrection CorrectLogStep(const HitCountGrid& map, const Dataset& dataset,
+                              std::span<const Pose2> poses, const LocalSearchParams& params,
+                              Rng rng);
 
 struct LocalSearchResult {
   std::vector<StampedPose> trajectory;  // one pose per scan, the laser's

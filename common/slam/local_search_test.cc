@@ -67,22 +67,34 @@ TEST(StepErrorCubeTest, TheHeadingRangeGrowsWithTheTurnOdometryReports) {
   LocalSearchParams params;
   params.max_error = Eigen::Vector3d(0.1, 0.08, 0.05);
   params.turn_error_per_rad = 0.5;
-  EXPECT_EQ(StepErrorCube(params, Pose2(0.3, 0.0, 0.0)), params.max_error);
-  const Eigen::Vector3d turning = StepErrorCube(params, Pose2(0.1, 0.0, -0.4));
+  params.carried_turn_error = 0.25;
+  EXPECT_EQ(StepErrorCube(params, Pose2(0.3, 0.0, 0.0), 0.0), params.max_error);
+  const Eigen::Vector3d turning = StepErrorCube(params, Pose2(0.1, 0.0, -0.4), 0.0);
   EXPECT_EQ(turning.head<2>(), params.max_error.head<2>());
   EXPECT_DOUBLE_EQ(turning.z(), 0.05 + 0.5 * 0.4);
+  // ...and with the heading correction the step before took, whichever its sign.
+  const Eigen::Vector3d after_correction = StepErrorCube(params, Pose2(0.1, 0.0, -0.4), -0.2);
+  EXPECT_EQ(after_correction.head<2>(), params.max_error.head<2>());
+  EXPECT_DOUBLE_EQ(after_correction.z(), 0.05 + 0.5 * 0.4 + 0.25 * 0.2);
+  EXPECT_EQ(StepErrorCube(params, Pose2(0.1, 0.0, -0.4), 0.2), after_correction);
+}
+
+// The box room's map from five scans 0.1 m apart, driven straight up to `end`.
+HitCountGrid MapDrivenUpTo(const LineMap& room, const Pose2& end) {
+  HitCountGrid map(0.05, Eigen::Vector2d(-1.0, -1.0), 180, 200);
+  for (int i = 0; i < 5; ++i) {
+    const Pose2 pose = end * Pose2(-0.1 * (4 - i), 0.0, 0.0);
+    map.AddScan(testing::ScanFrom(room, pose), pose);
+  }
+  return map;
 }
 
 // A fast turn whose odometry overstates it by 0.25 rad, more than two recentred cubes of
 // +-0.05 rad reach: only a heading range that grows with the turn finds the true heading.
 TEST(CorrectLogStepTest, AFastTurnsHeadingErrorIsFoundWhenTheCubeGrowsWithTheTurn) {
   const LineMap room = testing::BoxRoom();
-  HitCountGrid map(0.05, Eigen::Vector2d(-1.0, -1.0), 180, 200);
   const Pose2 start(2.8, 2.2, 0.3);
-  for (int i = 0; i < 5; ++i) {
-    const Pose2 pose = start * Pose2(-0.1 * (4 - i), 0.0, 0.0);
-    map.AddScan(testing::ScanFrom(room, pose), pose);
-  }
+  const HitCountGrid map = MapDrivenUpTo(room, start);
   const Pose2 truth = start * Pose2(0.05, 0.0, 0.9);
   Dataset drive;
   drive.scans = {testing::ScanFrom(room, start), testing::ScanFrom(room, truth)};
@@ -91,11 +103,53 @@ TEST(CorrectLogStepTest, AFastTurnsHeadingErrorIsFoundWhenTheCubeGrowsWithTheTur
   const auto heading_error = [&](double per_rad) {
     LocalSearchParams params;
     params.turn_error_per_rad = per_rad;
-    const StepCorrection c = CorrectLogStep(map, drive, 1, start, params, Rng(4));
+    const std::vector<Pose2> poses{start};
+    const StepCorrection c = CorrectLogStep(map, drive, poses, params, Rng(4));
     return std::abs((truth.inverse() * c.pose).theta());
   };
   EXPECT_GT(heading_error(0.0), 0.05);
   EXPECT_LT(heading_error(0.6), 0.01);
+}
+
+// Odometry read a little after the laser during a turn: it puts 0.2 rad of the second step's
+// turn into the first. The first step's correction took that back; the second step's error, the
+// opposite, lies beyond a cube sized by the little turn odometry reports for it, but within one
+// that also allows for the correction before.
+TEST(CorrectLogStepTest, AHeadingCorrectionTakenOneStepIsAllowedForInTheNext) {
+  const LineMap room = testing::BoxRoom();
+  const Pose2 start(2.8, 2.2, 0.3);
+  HitCountGrid map = MapDrivenUpTo(room, start);
+  const Pose2 first = start * Pose2(0.05, 0.0, 0.3);
+  const Pose2 second = first * Pose2(0.05, 0.0, 0.3);
+  map.AddScan(testing::ScanFrom(room, first), first);
+  Dataset drive;
+  drive.scans = {testing::ScanFrom(room, start), testing::ScanFrom(room, first),
+                 testing::ScanFrom(room, second)};
+  drive.scans[0].odometry = start;
+  drive.scans[1].odometry = start * Pose2(0.05, 0.0, 0.3 + 0.2);
+  drive.scans[2].odometry = drive.scans[1].odometry * Pose2(0.05, 0.0, 0.3 - 0.2);
+  const std::vector<Pose2> poses{start, first};  // the first step corrected by -0.2 rad
+  const auto heading_error = [&](double carried) {
+    LocalSearchParams params;  // the cube alone: 0.05 + 0.6 * 0.1 rad without the carry
+    params.recentres = 0;
+    params.refine.iterations = 0;
+    params.carried_turn_error = carried;
+    const StepCorrection c = CorrectLogStep(map, drive, poses, params, Rng(4));
+    return std::abs((second.inverse() * c.pose).theta());
+  };
+  EXPECT_GT(heading_error(0.0), 0.05);
+  EXPECT_LT(heading_error(0.5), 0.01);
+}
+
+TEST(CorrectLogStepTest, RefusesAStepWithoutAPoseBeforeIt) {
+  const LineMap room = testing::BoxRoom();
+  Dataset drive;
+  drive.scans = {testing::ScanFrom(room, Pose2(2.8, 2.2, 0.0)),
+                 testing::ScanFrom(room, Pose2(2.9, 2.2, 0.0))};
+  const HitCountGrid map(0.05, Eigen::Vector2d(-1.0, -1.0), 100, 100);
+  EXPECT_THROW(CorrectLogStep(map, drive, {}, LocalSearchParams{}, Rng(1)), Error);
+  const std::vector<Pose2> all(drive.scans.size());
+  EXPECT_THROW(CorrectLogStep(map, drive, all, LocalSearchParams{}, Rng(1)), Error);
 }
 
 // Down a hall longer than the laser's reach every scan sees its walls a step farther on. The end

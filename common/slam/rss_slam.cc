@@ -214,7 +214,7 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
     Pose2 pose = scan.odometry;
     if (i > 0) {
       const StepCorrection c =
-          CorrectLogStep(map, dataset, i, state.poses.back(), params.local, root.Stream(i));
+          CorrectLogStep(map, dataset, state.poses, params.local, root.Stream(i));
       pose = c.pose;
       state.local_evaluations += c.evaluations;
     }

@@ -47,6 +47,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   p.set_global_scored_scans(0);
   p.set_local_frontier_margin_m(0.15);
   p.set_local_turn_error_per_rad(0.0);
+  p.set_local_carried_turn_error(0.0);
   p.set_local_refine_iterations(0);
   p.set_local_refine_max_shift_cells(1.5);
   p.set_local_refine_max_turn_rad(0.03);
@@ -68,6 +69,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   EXPECT_EQ(r.global.scored_scans, 0u);
   EXPECT_EQ(r.local.frontier_margin, 0.15);
   EXPECT_EQ(r.local.turn_error_per_rad, 0.0);
+  EXPECT_EQ(r.local.carried_turn_error, 0.0);
   EXPECT_EQ(r.local.refine.iterations, 0u);
   EXPECT_EQ(r.local.refine.max_shift_cells, 1.5);
   EXPECT_EQ(r.local.refine.wall_share, 0.0);
@@ -112,6 +114,9 @@ TEST(SlamParamsTest, BadFieldsAreNamed) {
   p = {};
   p.set_local_turn_error_per_rad(-0.1);
   EXPECT_NE(ErrorOf(p).find("per radian turned"), std::string::npos);
+  p = {};
+  p.set_local_carried_turn_error(std::numeric_limits<double>::infinity());
+  EXPECT_NE(ErrorOf(p).find("previous step's heading correction"), std::string::npos);
   p = {};
   p.set_local_refine_max_shift_cells(-0.5);
   EXPECT_NE(ErrorOf(p).find("largest shift"), std::string::npos);
