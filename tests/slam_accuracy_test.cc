@@ -157,6 +157,13 @@ TEST(RssSlamAccuracyTest, MapsTheOfficeClusterFromDriftingOdometry) {
   EXPECT_LT(slam_ate, 1.2 * local_ate) << "local " << local_ate << " m, SLAM " << slam_ate;
 }
 
+// 002's cube: its heading range grows neither with the turn odometry reports nor with the
+// correction the step before took.
+void UseFixedCube(LocalSearchParams& local) {
+  local.turn_error_per_rad = 0.0;
+  local.carried_turn_error = 0.0;
+}
+
 // With a 4 m laser the office cluster's hallway and look-alike offices match well in many
 // places, and the local search drifts enough for revisits not to fit.
 Dataset AmbiguousDrive() {
@@ -191,8 +198,7 @@ TEST(LoopDetectionAccuracyTest, NoLoopFoundOnAnAmbiguousDriveIsAnotherPlace) {
 TEST(RssSlamAccuracyTest, ACorrectionThatBlursTheMapIsAppliedOnlyForTheMinimumEq7Gain) {
   const Dataset d = AmbiguousDrive();
   RssSlamParams params;
-  params.local.turn_error_per_rad = 0.0;
-  params.local.carried_turn_error = 0.0;
+  UseFixedCube(params.local);
   params.local.refine.iterations = 0;
   params.generations = 10;
   params.sharpness_tolerance = 0.1;
@@ -228,14 +234,10 @@ TEST(RssSlamAccuracyTest, OnTheIntelLabTheGlobalSearchesOrATurnWideCubeHalveTheF
   const Dataset& d = intel->log;
   const std::vector<Relation>& relations = intel->relations;
   constexpr std::size_t kScans = 3000;
-  // The fixed cube: its heading range grows neither with the turn nor with the correction before.
   const auto run = [&](bool fixed_cube, bool global_search) {
     RssSlamParams params;
     params.max_scans = kScans;
-    if (fixed_cube) {
-      params.local.turn_error_per_rad = 0.0;
-      params.local.carried_turn_error = 0.0;
-    }
+    if (fixed_cube) UseFixedCube(params.local);
     params.global_search = global_search;
     const RssSlamResult r = RunRssSlam(d, params, 1);
     if (global_search && fixed_cube) {
