@@ -1,8 +1,10 @@
 #include "common/slam/local_search.h"
 
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <span>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -53,6 +55,24 @@ Eigen::Vector3d StepErrorCube(const LocalSearchParams& params, const Pose2& odom
   return cube;
 }
 
+void CheckOdometrySteps(const Dataset& dataset) {
+  for (std::size_t i = 1; i < dataset.scans.size(); ++i) {
+    const LaserScan& previous = dataset.scans[i - 1];
+    const LaserScan& scan = dataset.scans[i];
+    const double step =
+        (scan.odometry.translation() - previous.odometry.translation()).stableNorm();
+    const double reach = std::max(previous.range_max, scan.range_max);
+    if (step <= 2 * reach) continue;  // also refuses NaN
+    std::ostringstream os;
+    os << dataset.source << ": odometry moves " << step << " m from scan " << i - 1 << " to scan "
+       << i << ", more than twice the laser's " << reach
+       << " m reach, so the two scans see nothing in common (a corrupt or reset odometry "
+          "reading?); scan "
+       << i << " is at t = " << std::fixed << std::setprecision(3) << scan.timestamp << " s";
+    throw Error(os.str());
+  }
+}
+
 HitCountGrid EmptyMapFor(const Dataset& dataset, const LocalSearchParams& params) {
   if (dataset.scans.empty()) throw Error(dataset.source + ": the log has no laser scans");
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
@@ -66,9 +86,17 @@ HitCountGrid EmptyMapFor(const Dataset& dataset, const LocalSearchParams& params
   const double pad = reach + params.margin;
   const Eigen::Vector2d origin = lo.array() - pad;
   const Eigen::Vector2d size = (hi - lo).array() + 2 * pad;
-  return HitCountGrid(params.resolution, origin,
-                      static_cast<int>(std::ceil(size.x() / params.resolution)) + 1,
-                      static_cast<int>(std::ceil(size.y() / params.resolution)) + 1);
+  // Counted in doubles, so that a path of 1e300 m is refused rather than overflowing the count.
+  const Eigen::Vector2d cells = (size / params.resolution).array().ceil() + 1.0;
+  if (!(cells.x() * cells.y() <= static_cast<double>(HitCountGrid::kMaxCells))) {
+    std::ostringstream os;
+    os << dataset.source << ": the odometry's path and the laser's reach span " << size.x() << " x "
+       << size.y() << " m, more than the " << HitCountGrid::kMaxCells << " cells of "
+       << params.resolution << " m the search's map holds; map at a coarser resolution";
+    throw Error(os.str());
+  }
+  return HitCountGrid(params.resolution, origin, static_cast<int>(cells.x()),
+                      static_cast<int>(cells.y()));
 }
 
 StepCorrection CorrectStep(const HitCountGrid& map, const LaserScan& scan, const Pose2& predicted,
@@ -147,6 +175,7 @@ LocalSearchResult RunLocalSearch(const Dataset& dataset, const LocalSearchParams
                                  const std::function<void(std::size_t, std::size_t)>& progress) {
   ValidateLocalSearchParams(params);
   if (dataset.scans.empty()) throw Error(dataset.source + ": the log has no laser scans");
+  CheckOdometrySteps(dataset);
   const Rng root(seed);
   LocalSearchResult result;
   const std::size_t n = dataset.scans.size();

@@ -64,8 +64,14 @@ void ValidateLocalSearchParams(const LocalSearchParams& params);
 Eigen::Vector3d StepErrorCube(const LocalSearchParams& params, const Pose2& odometry_step,
                               double previous_turn_correction);
 
+// Throws Error, naming the log and the scan, when odometry moves the robot farther between two
+// scans than twice the laser's reach: the two can see no point in common, so no scan matching
+// can place the second, and the mark is that of a corrupt reading or a reset odometry.
+void CheckOdometrySteps(const Dataset& dataset);
+
 // The map a log's scans can reach: the odometry's path widened by the laser's range and
-// params.margin.
+// params.margin. Throws Error, naming the log and its extent, when that is more than a
+// HitCountGrid holds.
 HitCountGrid EmptyMapFor(const Dataset& dataset, const LocalSearchParams& params);
 
 // One step of the local search: the pose of `scan` corrected from `predicted` against `map`

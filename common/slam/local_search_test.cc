@@ -1,9 +1,11 @@
 #include "common/slam/local_search.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "common/localization/test_scenes.h"
@@ -150,6 +152,54 @@ TEST(CorrectLogStepTest, RefusesAStepWithoutAPoseBeforeIt) {
   EXPECT_THROW(CorrectLogStep(map, drive, {}, LocalSearchParams{}, Rng(1)), Error);
   const std::vector<Pose2> all(drive.scans.size());
   EXPECT_THROW(CorrectLogStep(map, drive, all, LocalSearchParams{}, Rng(1)), Error);
+}
+
+// Two scans whose positions lie more than twice the laser's reach apart can see no point in
+// common; at exactly twice they still can.
+TEST(CheckOdometryStepsTest, RefusesAStepFartherThanTwiceTheLasersReach) {
+  const LineMap room = testing::BoxRoom();
+  Dataset drive;
+  drive.source = "drive.clf";
+  for (int i = 0; i < 3; ++i) drive.scans.push_back(testing::ScanFrom(room, Pose2(2.8, 2.2, 0.0)));
+  drive.scans[1].odometry = Pose2(0.0, 0.0, 0.0);
+  drive.scans[2].odometry = Pose2(16.0, 0.0, 0.0);  // the laser reaches 8 m
+  EXPECT_NO_THROW(CheckOdometrySteps(drive));
+  drive.scans[2].odometry = Pose2(16.01, 0.0, 0.0);
+  try {
+    CheckOdometrySteps(drive);
+    ADD_FAILURE() << "a 16.01 m step with an 8 m laser was accepted";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("drive.clf"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("from scan 1 to scan 2"));
+  }
+  drive.scans[2].odometry = Pose2(1e300, 0.0, 0.0);
+  EXPECT_THROW(CheckOdometrySteps(drive), Error);
+  drive.scans[2].odometry = Pose2(std::nan(""), 0.0, 0.0);
+  EXPECT_THROW(CheckOdometrySteps(drive), Error);
+}
+
+// A map too large for the search's grid is refused by name and extent, not by the grid's own
+// check on a size that has overflowed.
+TEST(EmptyMapForTest, RefusesAMapOfMoreCellsThanTheGridHolds) {
+  const LineMap room = testing::BoxRoom();
+  Dataset drive;
+  drive.source = "drive.clf";
+  drive.scans = {testing::ScanFrom(room, Pose2(2.8, 2.2, 0.0))};
+  LocalSearchParams params;
+  params.margin = 0.0;
+  EXPECT_EQ(EmptyMapFor(drive, params).width(), 321);  // 8 m either side, 5 cm cells
+  params.resolution = 1e-4;                            // 160,001^2 cells
+  try {
+    EmptyMapFor(drive, params);
+    ADD_FAILURE() << "a map of more than HitCountGrid::kMaxCells cells was made";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("drive.clf"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("coarser resolution"));
+  }
+  drive.scans.push_back(drive.scans[0]);
+  drive.scans[1].odometry = Pose2(1e300, 0.0, 0.0);  // would overflow an int count
+  params.resolution = 0.05;
+  EXPECT_THROW(EmptyMapFor(drive, params), Error);
 }
 
 // Down a hall longer than the laser's reach every scan sees its walls a step farther on. The end

@@ -91,6 +91,7 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
                          const RssSlamRuntime& runtime) {
   ValidateRssSlamParams(params);
   if (dataset.scans.empty()) throw Error(dataset.source + ": the log has no laser scans");
+  CheckOdometrySteps(dataset);
   const auto run_start = std::chrono::steady_clock::now();
   const std::size_t n = ScansToMap(dataset, params);
   const Rng root(seed);

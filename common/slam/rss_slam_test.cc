@@ -5,6 +5,7 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "common/sim/simulator.h"
@@ -197,6 +198,23 @@ TEST(RssSlamTest, RefusesBadParametersAndEmptyLogs) {
   Dataset empty;
   empty.source = "empty.clf";
   EXPECT_THROW(RunRssSlam(empty, {}, 1), Error);
+}
+
+// A corrupt odometry reading is refused before any work, naming the scan it is in.
+TEST(RssSlamTest, RefusesALogWhoseOdometryJumpsBeyondTheLasersReach) {
+  SimulationOptions sim;
+  sim.max_scans = 30;
+  Dataset d = Simulate(BuiltinWorld("s-corridor"), sim);
+  d.source = "jump.clf";
+  d.scans[20].odometry = Pose2(3000.0, 0.0, 0.0);
+  try {
+    RunRssSlam(d, {}, 1);
+    ADD_FAILURE() << "a 3 km odometry jump was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("jump.clf: odometry moves"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("from scan 19 to scan 20"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
