@@ -1,6 +1,7 @@
 #include "coordinator/localize_job.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "common/engine/engine_proto.h"
 #include "common/localization/localizer.h"
@@ -76,6 +77,9 @@ std::vector<proto::ResultFile> RunLocalizeJob(const JobContext& context) {
   const proto::JobSpec& spec = context.spec;
   const auto inputs =
       LoadLocalizeInputs(*context.files, spec.log(), spec.map(), spec.map_image(), spec.localize());
+  // Read before the search, so that a bad file fails the job at once, not after all its work.
+  const std::optional<NamedRelations> relations =
+      LoadJobRelations(*context.files, spec.relations());
   const proto::ProblemSpec problem = LocalizeProblemOf(spec);
   const std::size_t total = ScansToLocalize(inputs->dataset, inputs->options);
 
@@ -98,8 +102,7 @@ std::vector<proto::ResultFile> RunLocalizeJob(const JobContext& context) {
   runtime.progress(resume ? resume->next_scan : 0, total);
   LocalizeResult result = Localize(inputs->map, inputs->dataset, inputs->options, runtime);
 
-  return LocalizeOutputs(inputs->map, inputs->dataset, spec.localize(), result,
-                         LoadJobRelations(*context.files, spec.relations()),
+  return LocalizeOutputs(inputs->map, inputs->dataset, spec.localize(), result, relations,
                          context.worker_threads);
 }
 

@@ -1,5 +1,7 @@
 #include "coordinator/slam_job.h"
 
+#include <optional>
+
 #include "common/report/slam_outputs.h"
 #include "common/service/job_inputs.h"
 #include "common/service/slam_checkpoint.h"
@@ -22,6 +24,9 @@ std::vector<proto::ResultFile> RunSlamJob(const JobContext& context) {
   const proto::SlamParams& params = job.slam();
   const RssSlamParams rss = RssSlamParamsFromProto(params);
   const Dataset dataset = LoadJobLog(*context.files, spec.log(), params.lenient());
+  // Read before the search, so that a bad file fails the job at once, not after all its work.
+  const std::optional<NamedRelations> relations =
+      LoadJobRelations(*context.files, spec.relations());
   const std::size_t scans = ScansToMap(dataset, rss);
 
   const auto resume = ResumeState<proto::SlamCheckpoint>(context, RssSlamStateFromProto);
@@ -51,8 +56,7 @@ std::vector<proto::ResultFile> RunSlamJob(const JobContext& context) {
   ReportProgress(context, "local search", resume ? resume->next_scan : 0, scans, evaluations);
   const RssSlamResult result = RunRssSlam(dataset, rss, params.seed(), runtime);
 
-  return SlamOutputs(dataset, params, result, LoadJobRelations(*context.files, spec.relations()),
-                     context.worker_threads);
+  return SlamOutputs(dataset, params, result, relations, context.worker_threads);
 }
 
 }  // namespace evoslam

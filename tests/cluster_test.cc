@@ -1185,13 +1185,14 @@ class SlamJobTest : public ServiceTest {
     return out;
   }
 
-  // Submits the job as a client does: datasets uploaded, seed and islands in the spec.
-  std::string SubmitSlam(evoslam::ServiceClient& client,
-                         const proto::SlamParams& params = Params()) {
+  // Submits the job as a client does: datasets uploaded, seed and islands in the spec. An empty
+  // `relations` is the drive's.
+  std::string SubmitSlam(evoslam::ServiceClient& client, const proto::SlamParams& params = Params(),
+                         const fs::path& relations = {}) {
     proto::JobSpec spec;
     spec.set_kind(proto::JOB_KIND_SLAM);
     *spec.mutable_log() = client.Upload(DriveLog());
-    *spec.mutable_relations() = client.Upload(DriveRelations());
+    *spec.mutable_relations() = client.Upload(relations.empty() ? DriveRelations() : relations);
     *spec.mutable_slam() = params;
     spec.mutable_slam()->clear_seed();
     spec.mutable_slam()->clear_islands();
@@ -1227,6 +1228,13 @@ TEST_F(SlamJobTest, OnTwoWorkerProcessesItWritesWhatRunRssSlamWritesInProcess) {
     EXPECT_EQ(e.code(), proto::ERROR_CODE_INVALID);
     EXPECT_NE(std::string(e.what()).find("sigma"), std::string::npos) << e.what();
   }
+  // A malformed relations file fails the job, by name and line, before a scan is searched.
+  std::ofstream(Path("bad.relations")) << "1.0 2.0 0.5\n";
+  const proto::JobStatus failed =
+      WaitForEnd(client, SubmitSlam(client, Params(), Path("bad.relations")));
+  EXPECT_EQ(failed.state(), proto::JOB_STATE_FAILED) << Describe(failed);
+  EXPECT_NE(failed.error().find("bad.relations:1"), std::string::npos) << Describe(failed);
+  EXPECT_EQ(failed.done(), 0u) << Describe(failed);
 
   const std::string job_id = SubmitSlam(client);
   const proto::JobStatus end = WaitForEnd(client, job_id);
