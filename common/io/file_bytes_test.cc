@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
+#include <string>
 
 #include "common/util/error.h"
 #include "common/util/scratch_dir.h"
@@ -20,6 +22,14 @@ TEST(FileBytesTest, ReadsEveryByteAndNamesAFileItCannotRead) {
     FAIL() << "a missing file must be an error";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("missing.clf"), std::string::npos) << e.what();
+  }
+  std::filesystem::create_directory(dir / "logs.clf");
+  try {
+    ReadFileBytes(dir / "logs.clf");
+    FAIL() << "a directory must be an error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("logs.clf: is a directory"), std::string::npos)
+        << e.what();
   }
 }
 
