@@ -79,7 +79,7 @@ std::vector<proto::ResultFile> RunLocalizeJob(const JobContext& context) {
       LoadLocalizeInputs(*context.files, spec.log(), spec.map(), spec.map_image(), spec.localize());
   // Read before the search, so that a bad file fails the job at once, not after all its work.
   const std::optional<NamedRelations> relations =
-      LoadJobRelations(*context.files, spec.relations());
+      LoadJobRelations(*context.files, spec.relations(), inputs->dataset);
   const proto::ProblemSpec problem = LocalizeProblemOf(spec);
   const std::size_t total = ScansToLocalize(inputs->dataset, inputs->options);
 

@@ -26,7 +26,7 @@ std::vector<proto::ResultFile> RunSlamJob(const JobContext& context) {
   const Dataset dataset = LoadJobLog(*context.files, spec.log(), params.lenient());
   // Read before the search, so that a bad file fails the job at once, not after all its work.
   const std::optional<NamedRelations> relations =
-      LoadJobRelations(*context.files, spec.relations());
+      LoadJobRelations(*context.files, spec.relations(), dataset);
   const std::size_t scans = ScansToMap(dataset, rss);
 
   const auto resume = ResumeState<proto::SlamCheckpoint>(context, RssSlamStateFromProto);

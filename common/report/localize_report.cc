@@ -6,6 +6,7 @@
 #include <fstream>
 #include <numbers>
 #include <sstream>
+#include <string>
 
 #include "common/util/error.h"
 
@@ -73,6 +74,10 @@ std::string FormatAbsoluteErrors(const proto::AbsoluteErrors& a) {
 }
 
 std::string FormatRelationErrors(const proto::RelationErrors& e) {
+  // Zeros would read as a perfect score.
+  if (e.relations() == 0) {
+    return "none of the " + std::to_string(e.skipped()) + " relations joins two scans estimated";
+  }
   std::ostringstream s;
   s.setf(std::ios::fixed);
   s.precision(4);

@@ -67,6 +67,13 @@ TEST(LocalizeReportTest, SummaryShowsErrorsInCentimetresAndDegrees) {
   EXPECT_NE(s.find("relative error (truth, 219 relations): 0.0114 +- 0.0073 m, 0.500"),
             std::string::npos)
       << s;
+  e = {};
+  e.skipped = 12;
+  *r.mutable_relation_errors() = ToProto(e, "truth");
+  EXPECT_NE(FormatSummary(r).find(
+                "relative error (truth, 0 relations): none of the 12 relations joins two scans"),
+            std::string::npos)
+      << FormatSummary(r);
 }
 
 TEST(LocalizeReportTest, JsonRoundTripsWithZeroFieldsSpelledOut) {

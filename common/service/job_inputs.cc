@@ -2,6 +2,10 @@
 
 #include <spdlog/spdlog.h>
 
+#include <string>
+#include <vector>
+
+#include "common/eval/trajectory_errors.h"
 #include "common/io/carmen_reader.h"
 #include "common/io/relations.h"
 
@@ -27,11 +31,22 @@ Dataset LoadJobLog(const DatasetFiles& files, const proto::DatasetRef& log, bool
 }
 
 std::optional<NamedRelations> LoadJobRelations(const DatasetFiles& files,
-                                               const proto::DatasetRef& relations) {
+                                               const proto::DatasetRef& relations,
+                                               const Dataset& log) {
   if (relations.sha256().empty()) return std::nullopt;
   const std::filesystem::path path = NeedDataset(files, relations, "relations");
-  return NamedRelations{relations.name(),
-                        NamedInput(relations, [&] { return ReadRelations(path); })};
+  NamedRelations named{relations.name(),
+                       NamedInput(relations, [&] { return ReadRelations(path); })};
+  std::vector<StampedPose> scans;
+  scans.reserve(log.scans.size());
+  for (const LaserScan& s : log.scans) scans.push_back({s.timestamp, s.odometry});
+  if (ComputeRelationErrors(scans, named.relations).relations == 0) {
+    throw InputError(named.source, 0,
+                     "none of its " + std::to_string(named.relations.size()) +
+                         " relations joins two scans of " + log.source +
+                         " (matched by timestamp); are they another log's?");
+  }
+  return named;
 }
 
 }  // namespace evoslam

@@ -37,9 +37,12 @@ auto NamedInput(const proto::DatasetRef& ref, Read read) {
 // the log that way.
 Dataset LoadJobLog(const DatasetFiles& files, const proto::DatasetRef& log, bool lenient);
 
-// The relations a job's trajectory is scored against; nullopt when the job names none.
+// The relations a job's trajectory is scored against; nullopt when the job names none. Throws
+// InputError naming the relations when none of them joins two of `log`'s scans (another log's
+// relations would otherwise score nothing and report an error of zero).
 std::optional<NamedRelations> LoadJobRelations(const DatasetFiles& files,
-                                               const proto::DatasetRef& relations);
+                                               const proto::DatasetRef& relations,
+                                               const Dataset& log);
 
 }  // namespace evoslam
 
