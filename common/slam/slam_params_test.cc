@@ -102,6 +102,14 @@ TEST(SlamParamsTest, BadFieldsAreNamed) {
   p = {};
   p.set_local_particles(1);
   EXPECT_NE(ErrorOf(p).find("particles"), std::string::npos);
+  p.set_local_particles(100001);  // 4e9 was a bad_alloc
+  EXPECT_NE(ErrorOf(p).find("particles"), std::string::npos);
+  p = {};
+  p.set_local_iterations(100001);
+  EXPECT_NE(ErrorOf(p).find("iterations"), std::string::npos);
+  p = {};
+  p.set_partitions(100001);
+  EXPECT_NE(ErrorOf(p).find("partitions"), std::string::npos);
   p = {};
   p.set_min_match_score(2.0);
   EXPECT_NE(ErrorOf(p).find("score"), std::string::npos);
