@@ -177,15 +177,8 @@ Coordinator::Impl::Impl(zmq::context_t& context, CoordinatorOptions options)
     s->set(zmq::sockopt::maxmsgsize,
            static_cast<std::int64_t>(options_.max_message_bytes + (std::size_t{1} << 20)));
   }
-  const auto bind = [](zmq::socket_t& socket, const std::string& endpoint, const char* what) {
-    try {
-      socket.bind(endpoint);
-    } catch (const zmq::error_t& e) {
-      throw Error("cannot listen for " + std::string(what) + " on " + endpoint + ": " + e.what());
-    }
-  };
-  bind(clients_, options_.clients_endpoint, "clients");
-  bind(workers_, options_.workers_endpoint, "workers");
+  Bind(clients_, options_.clients_endpoint, "clients");
+  Bind(workers_, options_.workers_endpoint, "workers");
 
   for (const std::string& id : store_.Unfinished()) runnable_.push_back(id);
   if (!runnable_.empty()) spdlog::log(notice_, "resuming {} unfinished jobs", runnable_.size());

@@ -209,6 +209,11 @@ TEST_F(CliTest, BadFlagsAreRefused) {
   EXPECT_EQ(RunCli("frobnicate").status, 2);
   EXPECT_FALSE(fs::exists(dir_ / "o"));
   EXPECT_EQ(RunCli(localize).status, 1);  // a valid command line, but no such files
+  // An endpoint ZeroMQ refuses is named, not an internal error.
+  const Result endpoint = RunCli("jobs --coordinator garbage");
+  EXPECT_EQ(endpoint.status, 1) << endpoint.output;
+  EXPECT_NE(endpoint.output.find("cannot connect to the coordinator at garbage"), std::string::npos)
+      << endpoint.output;
   EXPECT_EQ(RunCli("--help").status, 0);
 }
 

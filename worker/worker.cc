@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "common/protocol/wire.h"
+#include "common/protocol/zmq_io.h"
 #include "common/service/dataset_files.h"
 #include "common/util/error.h"
 #include "common/util/temp_dir.h"
@@ -170,7 +171,7 @@ void Worker::Impl::OpenSocket() {
   socket_->set(zmq::sockopt::sndtimeo,
                static_cast<int>(std::max(1.0, 1000.0 * options_.heartbeat_seconds)));
   if (options_.curve) MakeCurveClient(*socket_, *options_.curve);
-  socket_->connect(options_.endpoint);
+  evoslam::Connect(*socket_, options_.endpoint, "the coordinator");
 }
 
 void Worker::Impl::Connect() {

@@ -1,6 +1,7 @@
 #include "common/protocol/zmq_io.h"
 
 #include "common/protocol/curve_keys.h"
+#include "common/util/error.h"
 
 namespace evoslam {
 
@@ -38,6 +39,22 @@ bool SendTo(zmq::socket_t& router, std::string_view identity, std::string_view p
 
 bool Send(zmq::socket_t& dealer, std::string_view payload) {
   return dealer.send(zmq::buffer(payload), zmq::send_flags::none).has_value();
+}
+
+void Bind(zmq::socket_t& socket, const std::string& endpoint, std::string_view what) {
+  try {
+    socket.bind(endpoint);
+  } catch (const zmq::error_t& e) {
+    throw Error("cannot listen for " + std::string(what) + " on " + endpoint + ": " + e.what());
+  }
+}
+
+void Connect(zmq::socket_t& socket, const std::string& endpoint, std::string_view what) {
+  try {
+    socket.connect(endpoint);
+  } catch (const zmq::error_t& e) {
+    throw Error("cannot connect to " + std::string(what) + " at " + endpoint + ": " + e.what());
+  }
 }
 
 void MakeCurveServer(zmq::socket_t& socket, const CurveServerKeys& keys, std::string_view domain) {

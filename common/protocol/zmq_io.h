@@ -27,6 +27,12 @@ bool SendTo(zmq::socket_t& router, std::string_view identity, std::string_view p
 // send timeout (ZMQ_SNDTIMEO), as when no connection to the peer is up.
 bool Send(zmq::socket_t& dealer, std::string_view payload);
 
+// Binds or connects a socket; an endpoint ZeroMQ refuses (a malformed address, an unknown
+// transport, an address in use) throws Error naming it and what it was for: "cannot listen for
+// <what> on <endpoint>: <reason>" or "cannot connect to <what> at <endpoint>: <reason>".
+void Bind(zmq::socket_t& socket, const std::string& endpoint, std::string_view what);
+void Connect(zmq::socket_t& socket, const std::string& endpoint, std::string_view what);
+
 // The CURVE settings of a socket: a server with its secret key, or a client that knows the
 // server's public key and has a key pair of its own. Keys are Z85 text.
 struct CurveServerKeys {

@@ -51,7 +51,7 @@ ServiceClient::ServiceClient(zmq::context_t& context, ClientOptions options)
   socket_.set(zmq::sockopt::sndtimeo,
               static_cast<int>(std::min(1e9, 1000.0 * options_.timeout_seconds)));
   if (options_.curve) MakeCurveClient(socket_, *options_.curve);
-  socket_.connect(options_.endpoint);
+  Connect(socket_, options_.endpoint, "the coordinator");
 }
 
 std::uint64_t ServiceClient::Send(proto::ClientRequest request) {
