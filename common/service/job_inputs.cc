@@ -3,11 +3,11 @@
 #include <spdlog/spdlog.h>
 
 #include <string>
-#include <vector>
 
 #include "common/eval/trajectory_errors.h"
 #include "common/io/carmen_reader.h"
 #include "common/io/relations.h"
+#include "common/report/slam_report.h"
 
 namespace evoslam {
 
@@ -37,10 +37,7 @@ std::optional<NamedRelations> LoadJobRelations(const DatasetFiles& files,
   const std::filesystem::path path = NeedDataset(files, relations, "relations");
   NamedRelations named{relations.name(),
                        NamedInput(relations, [&] { return ReadRelations(path); })};
-  std::vector<StampedPose> scans;
-  scans.reserve(log.scans.size());
-  for (const LaserScan& s : log.scans) scans.push_back({s.timestamp, s.odometry});
-  if (ComputeRelationErrors(scans, named.relations).relations == 0) {
+  if (ComputeRelationErrors(ScanOdometry(log, log.scans.size()), named.relations).relations == 0) {
     throw InputError(named.source, 0,
                      "none of its " + std::to_string(named.relations.size()) +
                          " relations joins two scans of " + log.source +
