@@ -17,6 +17,8 @@
 #include "common/engine/presets.h"
 #include "common/sim/simulator.h"
 #include "common/sim/world.h"
+#include "common/slam/global_search_problem.h"
+#include "common/slam/local_search.h"
 #include "common/slam/slam_params.h"
 #include "common/util/error.h"
 
@@ -100,10 +102,10 @@ void AddSlamParamOptions(CLI::App* cmd, SlamArgs& a) {
                  "occupied cell, eq. 2)")
       ->check(CLI::IsMember({"eval1", "eval2"}));
   AddParamOption(cmd, p, "--particles", "local_particles", "local search: PSO particles")
-      ->check(CLI::Range(2, 100000));
+      ->check(CLI::Range(std::size_t{2}, kMaxLocalParticles));
   AddParamOption(cmd, p, "--local-iterations", "local_iterations",
                  "local search: PSO iterations per scan")
-      ->check(CLI::Range(1, 100000));
+      ->check(CLI::Range(std::size_t{1}, kMaxLocalIterations));
   AddParamOption(cmd, p, "--resolution", "resolution_m", "map cell size, m")
       ->check(PositiveNumber());
   cmd->add_flag_function(
@@ -112,7 +114,7 @@ void AddSlamParamOptions(CLI::App* cmd, SlamArgs& a) {
   AddParamOption(cmd, p, "--global-every", "global_every",
                  "K: a global search every K scans besides those on loops (0: on loops only)");
   AddParamOption(cmd, p, "--partitions", "partitions", "L: partitions of a global search's stretch")
-      ->check(CLI::Range(1, 100000));
+      ->check(CLI::Range(std::size_t{1}, kMaxPartitions));
   AddParamOption(cmd, p, "--generations", "generations", "generations of each global search")
       ->check(CLI::Range(1, 1000000));
   AddParamOption(cmd, p, "--islands", "islands", "islands of each global search")

@@ -17,8 +17,9 @@ constexpr std::size_t kGenesPerColumn = 6;  // (error, mean) for x, y and theta
 }  // namespace
 
 void ValidateGlobalSearchParams(const GlobalSearchParams& p) {
-  if (p.partitions == 0 || p.partitions > 100000)
-    throw Error("global search: the partitions must number from 1 to 100000");
+  if (p.partitions == 0 || p.partitions > kMaxPartitions)
+    throw Error("global search: the partitions must number from 1 to " +
+                std::to_string(kMaxPartitions));
   if (!(p.max_error.array() >= 0.0).all() || !p.max_error.allFinite())
     throw Error("global search: the maximum partition error must be finite and not negative");
   if (!(p.sigma.array() > 0.0).all() || !p.sigma.allFinite())

@@ -17,6 +17,9 @@
 namespace evoslam {
 
 // Paper 002's global search (§3.2) settings.
+// The most partitions a global search may have (the command line's flag takes the same bound).
+inline constexpr std::size_t kMaxPartitions = 100000;
+
 struct GlobalSearchParams {
   std::size_t partitions = 8;  // L
   // Bounds of a partition's total error per axis (m, m, rad).

@@ -30,11 +30,12 @@ bool OnFace(const Eigen::VectorXd& error, const Eigen::Vector3d& max_error) {
 void ValidateLocalSearchParams(const LocalSearchParams& p) {
   if (!(p.max_error.array() >= 0.0).all() || !p.max_error.allFinite())
     throw Error("local search: the maximum step error must be finite and not negative");
-  // The upper bounds are the command line's: beyond them a swarm's memory, not its search, grows.
-  if (p.particles < 2 || p.particles > 100000)
-    throw Error("local search: the particles must number from 2 to 100000");
-  if (p.iterations == 0 || p.iterations > 100000)
-    throw Error("local search: the iterations must number from 1 to 100000");
+  if (p.particles < 2 || p.particles > kMaxLocalParticles)
+    throw Error("local search: the particles must number from 2 to " +
+                std::to_string(kMaxLocalParticles));
+  if (p.iterations == 0 || p.iterations > kMaxLocalIterations)
+    throw Error("local search: the iterations must number from 1 to " +
+                std::to_string(kMaxLocalIterations));
   if (!(p.turn_error_per_rad >= 0.0) || !std::isfinite(p.turn_error_per_rad))
     throw Error(
         "local search: the heading error per radian turned must be finite and not negative");

@@ -18,6 +18,11 @@
 
 namespace evoslam {
 
+// The most particles and iterations a step's swarm may have: beyond them its memory, not its
+// search, grows. The command line's flags take the same bounds.
+inline constexpr std::size_t kMaxLocalParticles = 100000;
+inline constexpr std::size_t kMaxLocalIterations = 100000;
+
 // Paper 002's local search (§3.1): at every step, PSO over the odometry error of the last step.
 struct LocalSearchParams {
   LocalFitness fitness = LocalFitness::kEval1;
