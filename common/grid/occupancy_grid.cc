@@ -131,9 +131,24 @@ OccupancyGrid::OccupancyGrid(double resolution, const Eigen::Vector2d& origin, i
   misses_.assign(cells, 0);
 }
 
-OccupancyGrid OccupancyGrid::FromScans(std::span<const LaserScan> scans,
-                                       std::span<const Pose2> poses, double resolution,
-                                       double margin) {
+namespace {
+
+// The box around every sensor position and beam end point, and the margin around it, with the
+// spans and parameters checked as FromScans documents.
+struct ScanExtent {
+  Eigen::Vector2d lo, hi;
+  double margin = 0.0;
+
+  Eigen::Vector2d origin() const { return (lo.array() - margin).matrix(); }
+  // Cells along each axis at `resolution`: one more than the extent needs, so that a point
+  // exactly on the far edge is inside. In doubles, as a bad extent can be beyond any integer.
+  Eigen::Vector2d Cells(double resolution) const {
+    return ((hi.array() + margin - origin().array()) / resolution).floor() + 1.0;
+  }
+};
+
+ScanExtent ExtentOf(std::span<const LaserScan> scans, std::span<const Pose2> poses,
+                    double resolution, double margin) {
   if (scans.size() != poses.size()) {
     throw Error("occupancy grid: " + std::to_string(scans.size()) + " scans but " +
                 std::to_string(poses.size()) + " poses");
@@ -163,20 +178,38 @@ OccupancyGrid OccupancyGrid::FromScans(std::span<const LaserScan> scans,
       hi = hi.cwiseMax(end);
     }
   }
-  const Eigen::Vector2d origin = (lo.array() - margin).matrix();
-  // One more cell than the extent needs, so that a point exactly on the far edge is inside.
-  const Eigen::Vector2d cells = ((hi.array() + margin - origin.array()) / resolution).floor() + 1.0;
+  return {lo, hi, margin};
+}
+
+}  // namespace
+
+OccupancyGrid OccupancyGrid::FromScans(std::span<const LaserScan> scans,
+                                       std::span<const Pose2> poses, double resolution,
+                                       double margin) {
+  const ScanExtent extent = ExtentOf(scans, poses, resolution, margin);
+  const Eigen::Vector2d cells = extent.Cells(resolution);
   if (cells.x() * cells.y() > static_cast<double>(kMaxCells)) {
+    const Eigen::Vector2d span = extent.hi - extent.lo;
     std::ostringstream os;
-    os << "occupancy grid: the scans span " << (hi - lo).x() << " x " << (hi - lo).y()
-       << " m, which at " << resolution << " m per cell exceeds " << kMaxCells
-       << " cells; use a coarser resolution";
+    os << "occupancy grid: the scans span " << span.x() << " x " << span.y() << " m, which at "
+       << resolution << " m per cell exceeds " << kMaxCells << " cells; use a coarser resolution";
     throw Error(os.str());
   }
-  OccupancyGrid grid(resolution, origin, static_cast<int>(cells.x()), static_cast<int>(cells.y()));
+  OccupancyGrid grid(resolution, extent.origin(), static_cast<int>(cells.x()),
+                     static_cast<int>(cells.y()));
   for (std::size_t i = 0; i < scans.size(); ++i) grid.InsertScan(scans[i], poses[i]);
   grid.UpdateDistanceField();
   return grid;
+}
+
+double OccupancyGrid::FittingResolution(std::span<const LaserScan> scans,
+                                        std::span<const Pose2> poses, double resolution,
+                                        double margin) {
+  const ScanExtent extent = ExtentOf(scans, poses, resolution, margin);
+  // Doubling keeps the map's cells aligned with the finer ones; the loop ends, as a finite
+  // extent fits in one cell of some finite size.
+  while (extent.Cells(resolution).prod() > static_cast<double>(kMaxCells)) resolution *= 2.0;
+  return resolution;
 }
 
 Eigen::Vector2d OccupancyGrid::max_corner() const {

@@ -54,6 +54,11 @@ class OccupancyGrid {
   static OccupancyGrid FromScans(std::span<const LaserScan> scans, std::span<const Pose2> poses,
                                  double resolution, double margin);
 
+  // The resolution at which FromScans fits the scans in kMaxCells: `resolution`, or the first of
+  // 2, 4, 8, ... times it that does. Throws as FromScans does for bad spans or parameters.
+  static double FittingResolution(std::span<const LaserScan> scans, std::span<const Pose2> poses,
+                                  double resolution, double margin);
+
   double resolution() const { return resolution_; }
   const Eigen::Vector2d& origin() const { return origin_; }
   int width() const { return width_; }

@@ -315,6 +315,22 @@ TEST(OccupancyGridTest, FromScansRejectsBadInput) {
   EXPECT_THROW(OccupancyGrid::FromScans(two_scans, spread, 0.05, 0.0), Error);
 }
 
+// The extent of 1e5 m with one scan at each end needs 2e6 x 2e6 cells of 5 cm; 2^26 cells hold
+// 8192 x 8192, which 1e5 m fills at 12.8 m (2^8 x 5 cm) but not at 6.4 m.
+TEST(OccupancyGridTest, FittingResolutionDoublesUntilTheScansFit) {
+  const std::vector<LaserScan> scans{MakeScan(0.0, 0.1, {1.0f}), MakeScan(0.0, 0.1, {1.0f})};
+  const std::vector<Pose2> spread{Pose2(), Pose2(1e5, 1e5, 0.0)};
+  const double fitting = OccupancyGrid::FittingResolution(scans, spread, 0.05, 0.0);
+  EXPECT_DOUBLE_EQ(fitting, 0.05 * 256);
+  // Half as fine does not fit (the refusal comes before any cell is allocated).
+  EXPECT_THROW(OccupancyGrid::FromScans(scans, spread, fitting / 2, 0.0), Error);
+  // What fits already keeps its resolution; bad input is refused as FromScans refuses it.
+  const std::vector<Pose2> near{Pose2(), Pose2(3.0, 4.0, 0.0)};
+  EXPECT_DOUBLE_EQ(OccupancyGrid::FittingResolution(scans, near, 0.05, 1.0), 0.05);
+  EXPECT_THROW(OccupancyGrid::FittingResolution(scans, near, 0.0, 1.0), Error);
+  EXPECT_THROW(OccupancyGrid::FittingResolution(scans, {near.data(), 1}, 0.05, 1.0), Error);
+}
+
 // A grid of the given size with random occupied, free and unknown cells.
 OccupancyGrid RandomGrid(std::mt19937& rng, double occupied_fraction) {
   std::uniform_int_distribution<int> size(1, 40);
