@@ -1,5 +1,7 @@
 #include "common/report/slam_outputs.h"
 
+#include <spdlog/spdlog.h>
+
 #include <fstream>
 #include <span>
 #include <string>
@@ -35,13 +37,21 @@ void CheckResult(const RssSlamResult& result) {
   }
 }
 
+// The map at `resolution`, or as much coarser as it takes to fit: the search's map has room for
+// more cells than an output map, and a run must not be lost for want of a fine picture of it.
 OccupancyGrid GridAtPoses(const Dataset& dataset, std::span<const StampedPose> trajectory,
                           double resolution) {
   std::vector<Pose2> poses;
   poses.reserve(trajectory.size());
   for (const StampedPose& p : trajectory) poses.push_back(p.pose);
-  return OccupancyGrid::FromScans(std::span(dataset.scans).first(poses.size()), poses, resolution,
-                                  kMapMargin);
+  const std::span<const LaserScan> scans = std::span(dataset.scans).first(poses.size());
+  const double fitting = OccupancyGrid::FittingResolution(scans, poses, resolution, kMapMargin);
+  if (fitting != resolution) {
+    spdlog::warn(
+        "the map of the run does not fit in {} cells at {} m per cell; it is written at {} m",
+        OccupancyGrid::kMaxCells, resolution, fitting);
+  }
+  return OccupancyGrid::FromScans(scans, poses, fitting, kMapMargin);
 }
 
 // Drawn from the least telling up, so that the estimate hides odometry and truth where they
@@ -78,6 +88,7 @@ std::vector<proto::ResultFile> SlamOutputs(const Dataset& dataset, const proto::
   WriteTrajectoryText(result.trajectory, dir / "trajectory.txt");
   WriteTrajectoryTum(result.trajectory, dir / "trajectory.tum");
   OccupancyGrid grid = GridAtPoses(dataset, result.trajectory, params.resolution_m());
+  report.set_map_resolution_m(grid.resolution());
   WriteMapYaml(grid, dir / "map.yaml");
   WriteGridPng(grid, dir / "map.png");
   WriteMapTrajectory(std::move(grid), dataset, result, dir / "map_trajectory.png");

@@ -314,6 +314,29 @@ TEST_F(SlamOutputsTest, SummarySaysWhatRanWhatItFoundAndHowWell) {
   EXPECT_EQ(s.find("odometry alone: x 0.00 cm"), std::string::npos) << "odometry drifts\n" << s;
 }
 
+// A run that spans more than a map of 5 cm cells can hold (2^26 cells, 8192 on a side, 410 m)
+// still hands back everything, the map at 10 cm, and says so.
+TEST_F(SlamOutputsTest, ARunTooWideForTheMapsCellsGetsACoarserMap) {
+  Write(SlamOutputs(log_, Params(), result_, std::nullopt, 1));
+  EXPECT_DOUBLE_EQ(ReadReport().map_resolution_m(), 0.05);
+
+  RssSlamResult wide = result_;
+  const Pose2 far(405.0, 405.0, 0.0);
+  wide.trajectory.back().pose = far;
+  const auto files = Write(SlamOutputs(log_, Params(), wide, std::nullopt, 1));
+  EXPECT_EQ(files.size(), 8u);
+  const OccupancyGrid map = ReadMapYaml(dir_ / "map.yaml");
+  EXPECT_DOUBLE_EQ(map.resolution(), 0.1);
+  for (const Eigen::Vector2d& end : ReturnPoints(log_.scans.back())) {
+    ASSERT_TRUE(map.WorldToCell(far * end)) << "every return lies on the map";
+  }
+  EXPECT_EQ(ReadTrajectory(dir_ / "trajectory.txt").back().pose.translation(), far.translation());
+  EXPECT_DOUBLE_EQ(ReadReport().map_resolution_m(), 0.1);
+  EXPECT_NE(files.at("summary.txt").find("map written at 0.10 m per cell, not 0.05"),
+            std::string::npos)
+      << files.at("summary.txt");
+}
+
 TEST_F(SlamOutputsTest, AResultThatDoesNotFitTheLogIsAnError) {
   Dataset shorter = log_;
   shorter.scans.pop_back();

@@ -134,6 +134,10 @@ std::string FormatSlamSummary(const proto::SlamReport& r) {
   s << "  fitness evaluations: " << r.local_evaluations() << " local, " << r.global_evaluations()
     << " global\n";
   PrintLoops(s, r);
+  if (r.map_resolution_m() > p.resolution_m()) {
+    s << "  map written at " << r.map_resolution_m() << " m per cell, not " << p.resolution_m()
+      << ": the run's extent does not fit a map that fine\n";
+  }
   if (r.has_absolute_errors()) {
     s << "  RMS error vs ground truth: " << FormatAbsoluteErrors(r.absolute_errors())
       << "\n    odometry alone: " << FormatAbsoluteErrors(r.odometry_absolute_errors()) << "\n";
