@@ -38,7 +38,8 @@ GlobalSearchProblem::GlobalSearchProblem(std::span<const LaserScan> scans,
                                          std::span<const Pose2> poses, std::size_t first,
                                          std::size_t last, const HitCountGrid& base,
                                          const GlobalSearchParams& params,
-                                         std::optional<LoopConstraint> loop)
+                                         std::optional<LoopConstraint> loop,
+                                         std::span<const LoopConstraint> held)
     : base_(base), params_(params), loop_(loop), first_(first), last_(last) {
   ValidateGlobalSearchParams(params);
   if (!(first < last) || last > scans.size() || last > poses.size()) {
@@ -65,12 +66,12 @@ GlobalSearchProblem::GlobalSearchProblem(std::span<const LaserScan> scans,
     std::vector<Eigen::Vector2d>& used = returns_.emplace_back();
     for (std::size_t i = 0; i < all.size(); i += params.beam_stride) used.push_back(all[i]);
   }
-  if (loop && loop->earlier < first) loop_earlier_pose_ = Pose2Frame(poses[loop->earlier]);
-  if (loop) {
-    const std::vector<Eigen::Vector2d> later = ReturnPoints(scans[loop->later]);
-    double squares = 0.0;
-    for (const Eigen::Vector2d& p : later) squares += p.squaredNorm();
-    if (!later.empty()) loop_lever_ = std::sqrt(squares / static_cast<double>(later.size()));
+  if (loop) observed_.push_back(Observe(scans, poses, *loop));
+  for (const LoopConstraint& h : held) {
+    if (h.earlier >= h.later || h.later < first || h.later >= last) {
+      throw Error("global search: a held loop must end inside the scans searched, after it starts");
+    }
+    observed_.push_back(Observe(scans, poses, h));
   }
   const auto n = static_cast<Eigen::Index>(partitions * kGenesPerColumn);
   lower_.resize(n);
@@ -95,46 +96,79 @@ Eigen::VectorXd GlobalSearchProblem::Identity() const {
 std::optional<Eigen::VectorXd> GlobalSearchProblem::ClosingCandidate() const {
   // A loop that starts inside the stretch bends with it; RunRssSlam's never does.
   if (!loop_ || loop_->earlier >= first_) return std::nullopt;
+  // The loops the candidate closes: the search's own, first, and the held loops whose earlier
+  // scan the stretch does not move.
+  std::vector<const Observation*> closed;
+  for (const Observation& o : observed_) {
+    if (o.constraint.earlier < first_) closed.push_back(&o);
+  }
+  const auto m = static_cast<Eigen::Index>(closed.size());
   const std::size_t partitions = bounds_.size() - 1;
+  const auto columns = static_cast<Eigen::Index>(partitions);
   Eigen::VectorXd x = Identity();
   const auto gene = [&](std::size_t partition, int axis) {
     return static_cast<Eigen::Index>(partition * kGenesPerColumn + 2 * axis);
   };
   const auto clamp = [&](Eigen::Index g, double v) { return std::clamp(v, lower_(g), upper_(g)); };
-  const auto later = [&](const Eigen::VectorXd& candidate) {
+  const auto laters = [&](const Eigen::VectorXd& candidate) {
     const std::vector<Pose2> poses = Apply(candidate);
-    return poses[loop_->later - first_];
+    std::vector<Pose2> at;
+    for (const Observation* o : closed) at.push_back(poses[o->constraint.later - first_]);
+    return at;
   };
-  const Pose2 expected = loop_earlier_pose_ * loop_->relative;
-  // The heading errors add up along the path: the later heading moves by each partition's error
-  // times the share of its weight spent before the later scan. When the loop ends the stretch (as
-  // RunRssSlam's do) that is all of it, and the least-norm split is the even one.
-  const double start_heading = later(x).theta();
-  const double turn = WrapAngle(expected.theta() - start_heading);
-  Eigen::RowVectorXd turns = Eigen::RowVectorXd::Ones(static_cast<Eigen::Index>(partitions));
-  if (loop_->later + 1 < last_) {
+  std::vector<Pose2> expected;
+  for (const Observation* o : closed) expected.push_back(o->earlier_pose * o->constraint.relative);
+  // The heading errors add up along the path: a later heading moves by each partition's error
+  // times the share of its weight spent before the later scan. When the search's loop alone is
+  // closed and ends the stretch (as RunRssSlam's do) that is all of it, and the least-norm split
+  // is the even one.
+  const std::vector<Pose2> start = laters(x);
+  Eigen::VectorXd turn(m);
+  for (Eigen::Index k = 0; k < m; ++k) {
+    turn(k) = WrapAngle(expected[k].theta() - start[k].theta());
+  }
+  Eigen::MatrixXd turns = Eigen::MatrixXd::Ones(m, columns);
+  if (m > 1 || loop_->later + 1 < last_) {
     for (std::size_t i = 0; i < partitions; ++i) {
       Eigen::VectorXd unit = x;
       unit(gene(i, 2)) += 1.0;
-      turns(static_cast<Eigen::Index>(i)) = WrapAngle(later(unit).theta() - start_heading);
+      const std::vector<Pose2> turned = laters(unit);
+      for (Eigen::Index k = 0; k < m; ++k) {
+        turns(k, static_cast<Eigen::Index>(i)) = WrapAngle(turned[k].theta() - start[k].theta());
+      }
     }
   }
-  const double reach = turns.squaredNorm();
-  for (std::size_t i = 0; i < partitions && reach > 0; ++i) {
-    x(gene(i, 2)) = clamp(gene(i, 2), turn * turns(static_cast<Eigen::Index>(i)) / reach);
+  if (m == 1) {
+    const double reach = turns.row(0).squaredNorm();
+    for (std::size_t i = 0; i < partitions && reach > 0; ++i) {
+      x(gene(i, 2)) = clamp(gene(i, 2), turn(0) * turns(0, static_cast<Eigen::Index>(i)) / reach);
+    }
+  } else {
+    const Eigen::VectorXd errors = turns.completeOrthogonalDecomposition().solve(turn);
+    for (std::size_t i = 0; i < partitions; ++i) {
+      x(gene(i, 2)) = clamp(gene(i, 2), errors(static_cast<Eigen::Index>(i)));
+    }
   }
-  // With the headings set, the later position moves linearly with the position errors: each
-  // partition's two columns of that map, then the least-norm errors that make up the miss.
-  const Eigen::Vector2d at = later(x).translation();
-  Eigen::MatrixXd moves(2, static_cast<Eigen::Index>(2 * partitions));
+  // With the headings set, the later positions move linearly with the position errors: each
+  // partition's two columns of that map, then the least-norm (or, when the loops ask more than
+  // the partitions can give, least-squares) errors that make up the misses.
+  const std::vector<Pose2> at = laters(x);
+  Eigen::MatrixXd moves(2 * m, 2 * columns);
   for (std::size_t i = 0; i < partitions; ++i) {
     for (int axis = 0; axis < 2; ++axis) {
       Eigen::VectorXd unit = x;
       unit(gene(i, axis)) += 1.0;
-      moves.col(static_cast<Eigen::Index>(2 * i) + axis) = later(unit).translation() - at;
+      const std::vector<Pose2> moved = laters(unit);
+      for (Eigen::Index k = 0; k < m; ++k) {
+        moves.block<2, 1>(2 * k, static_cast<Eigen::Index>(2 * i) + axis) =
+            moved[k].translation() - at[k].translation();
+      }
     }
   }
-  const Eigen::Vector2d miss = expected.translation() - at;
+  Eigen::VectorXd miss(2 * m);
+  for (Eigen::Index k = 0; k < m; ++k) {
+    miss.segment<2>(2 * k) = expected[k].translation() - at[k].translation();
+  }
   const Eigen::VectorXd errors = moves.completeOrthogonalDecomposition().solve(miss);
   for (std::size_t i = 0; i < partitions; ++i) {
     for (int axis = 0; axis < 2; ++axis) {
@@ -219,16 +253,31 @@ void GlobalSearchProblem::Score(const Eigen::Ref<const Eigen::VectorXd>& x, Scra
     if (c) conflicts += base_.occupied(*c) || cells.Contains(*c);
   }
   double distance = 0.0;
-  if (loop_) {
-    const Pose2Frame& earlier =
-        loop_->earlier < first_ ? loop_earlier_pose_ : poses[loop_->earlier - first_];
-    const Pose2 expected = earlier * loop_->relative;
-    const Pose2& later = poses[loop_->later - first_].pose();
-    distance = std::hypot(WeightedLength(later.translation() - expected.translation(),
-                                         earlier.pose().theta(), loop_->weight),
-                          loop_lever_ * WrapAngle(later.theta() - expected.theta()));
-  }
+  for (const Observation& o : observed_) distance += Distance(o, poses);
   fitness[1] = params_.w1 * conflicts + params_.w2 * distance;
+}
+
+GlobalSearchProblem::Observation GlobalSearchProblem::Observe(std::span<const LaserScan> scans,
+                                                              std::span<const Pose2> poses,
+                                                              const LoopConstraint& loop) const {
+  Observation o{.constraint = loop, .earlier_pose = {}, .lever = 0.0};
+  if (loop.earlier < first_) o.earlier_pose = Pose2Frame(poses[loop.earlier]);
+  const std::vector<Eigen::Vector2d> later = ReturnPoints(scans[loop.later]);
+  double squares = 0.0;
+  for (const Eigen::Vector2d& p : later) squares += p.squaredNorm();
+  if (!later.empty()) o.lever = std::sqrt(squares / static_cast<double>(later.size()));
+  return o;
+}
+
+double GlobalSearchProblem::Distance(const Observation& o,
+                                     std::span<const Pose2Frame> poses) const {
+  const LoopConstraint& c = o.constraint;
+  const Pose2Frame& earlier = c.earlier < first_ ? o.earlier_pose : poses[c.earlier - first_];
+  const Pose2 expected = earlier * c.relative;
+  const Pose2& later = poses[c.later - first_].pose();
+  return std::hypot(WeightedLength(later.translation() - expected.translation(),
+                                   earlier.pose().theta(), c.weight),
+                    o.lever * WrapAngle(later.theta() - expected.theta()));
 }
 
 void GlobalSearchProblem::Evaluate(const Eigen::Ref<const Eigen::MatrixXd>& candidates,

@@ -76,7 +76,8 @@ class GlobalSearchProblem : public Problem {
   // the anchor the corrected steps start from.
   GlobalSearchProblem(std::span<const LaserScan> scans, std::span<const Pose2> poses,
                       std::size_t first, std::size_t last, const HitCountGrid& base,
-                      const GlobalSearchParams& params, std::optional<LoopConstraint> loop);
+                      const GlobalSearchParams& params, std::optional<LoopConstraint> loop,
+                      std::span<const LoopConstraint> held = {});
 
   const Eigen::VectorXd& lower() const override { return lower_; }
   const Eigen::VectorXd& upper() const override { return upper_; }
@@ -90,8 +91,9 @@ class GlobalSearchProblem : public Problem {
   Eigen::VectorXd Identity() const;
   // The candidate that closes the loop: the heading's miss at the loop's later scan shared out
   // between the partitions at the least total correction (evenly, when the loop ends the
-  // stretch), then its position's miss likewise, each gene within its bounds. None without a loop,
-  // or for one that starts inside the stretch.
+  // stretch), then its position's miss likewise, each gene within its bounds. Held loops that
+  // start before the stretch are kept as they are, or closed, in the same least-squares sense.
+  // None without a loop, or for one that starts inside the stretch.
   std::optional<Eigen::VectorXd> ClosingCandidate() const;
   // The search starts from the trajectory as it stands, and from the loop closed.
   std::vector<Eigen::VectorXd> starts() const override;
@@ -107,9 +109,23 @@ class GlobalSearchProblem : public Problem {
              std::vector<Pose2Frame>& poses) const;
   void Score(const Eigen::Ref<const Eigen::VectorXd>& x, Scratch& scratch, double* fitness) const;
 
+  // A loop eq. 7 measures, with what its distance needs besides the candidate's poses.
+  struct Observation {
+    LoopConstraint constraint;
+    Pose2Frame earlier_pose;  // when it lies before first
+    // The RMS range of the later scan: turned by a small angle, its returns move about that
+    // many times the angle.
+    double lever = 0.0;
+  };
+  Observation Observe(std::span<const LaserScan> scans, std::span<const Pose2> poses,
+                      const LoopConstraint& loop) const;
+  double Distance(const Observation& o, std::span<const Pose2Frame> poses) const;
+
   const HitCountGrid& base_;
   GlobalSearchParams params_;
   std::optional<LoopConstraint> loop_;
+  // The loop's observation first, then those of the held loops.
+  std::vector<Observation> observed_;
   std::size_t first_, last_;
   std::size_t scan_stride_ = 1;         // eq. 6 re-inserts scans first, first + stride, ...
   std::size_t steps_begin_;             // the first corrected step
@@ -118,10 +134,6 @@ class GlobalSearchProblem : public Problem {
   std::vector<std::size_t> bounds_;     // partition i covers steps [bounds_[i], bounds_[i + 1])
   // The end points of scan first + k * scan_stride_, laser frame.
   std::vector<std::vector<Eigen::Vector2d>> returns_;
-  Pose2Frame loop_earlier_pose_;  // the loop's earlier pose, when it lies before first
-  // The RMS range of the loop's later scan: turned by a small angle, its returns move about
-  // that many times the angle.
-  double loop_lever_ = 0.0;
   Eigen::VectorXd lower_, upper_;
 };
 

@@ -5,6 +5,8 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <span>
+#include <vector>
 
 #include "common/sim/simulator.h"
 #include "common/sim/world.h"
@@ -206,12 +208,12 @@ struct LoopScene {
   std::vector<Pose2> poses;
   HitCountGrid empty{0.05, Eigen::Vector2d(-2, -2), 600, 460};
 
-  // Eq. 7 of the stretch [10, 30) as it stands, with its loop term alone at weight 1.
-  double LoopTerm(const LoopConstraint& loop) const {
+  // Eq. 7 of the stretch [10, 30) as it stands, with its loop terms alone at weight 1.
+  double LoopTerm(const LoopConstraint& loop, std::span<const LoopConstraint> held = {}) const {
     GlobalSearchParams params;
     params.w1 = 0.0;
     params.w2 = 1.0;
-    const GlobalSearchProblem problem(log.scans, poses, 10, 30, empty, params, loop);
+    const GlobalSearchProblem problem(log.scans, poses, 10, 30, empty, params, loop, held);
     std::vector<double> fitness(2);
     problem.Evaluate(problem.Identity(), fitness);
     return fitness[1];
@@ -227,20 +229,60 @@ LoopScene MakeLoopScene() {
   return scene;
 }
 
+// The later scan of `loop` put `miss` metres from where it is, along the earlier scan's x axis.
+LoopConstraint MissedBy(const std::vector<Pose2>& poses, std::size_t earlier, std::size_t later,
+                        double miss) {
+  const Eigen::Vector2d expected =
+      poses[later].translation() -
+      Eigen::Rotation2Dd(poses[earlier].theta()) * Eigen::Vector2d(miss, 0.0);
+  return {earlier, later, poses[earlier].inverse() * Pose2(expected, poses[later].theta())};
+}
+
 // Eq. 7's loop term measures the miss in the earlier scan's frame through the loop's weight:
 // along the direction the match cannot pin, the later pose may land off at little cost.
 TEST(GlobalSearchProblemTest, TheLoopsWeightDiscountsAMissAlongWhatTheMatchCouldNotPin) {
   const LoopScene scene = MakeLoopScene();
-  const std::vector<Pose2>& poses = scene.poses;
-  // The loop puts the later pose 0.3 m back along the earlier scan's x axis from where it is.
-  const Eigen::Vector2d expected =
-      poses[25].translation() - Eigen::Rotation2Dd(poses[5].theta()) * Eigen::Vector2d(0.3, 0.0);
-  LoopConstraint loop{5, 25, poses[5].inverse() * Pose2(expected, poses[25].theta())};
+  LoopConstraint loop = MissedBy(scene.poses, 5, 25, 0.3);
   EXPECT_NEAR(scene.LoopTerm(loop), 0.3, 1e-9);  // the identity: 002's distance
   loop.weight << 0.01, 0.0, 0.0, 1.0;            // x barely pinned
   EXPECT_NEAR(scene.LoopTerm(loop), 0.03, 1e-9);
   loop.weight << 1.0, 0.0, 0.0, 0.01;  // y barely pinned: the miss along x counts in full
   EXPECT_NEAR(scene.LoopTerm(loop), 0.3, 1e-9);
+}
+
+// The loops found before a search and bent by it count in its eq. 7 as its own loop does, so
+// that closing one loop does not reopen another; a held loop the stretch does not bend is refused.
+TEST(GlobalSearchProblemTest, HeldLoopsAddTheirMissesToEq7) {
+  const LoopScene scene = MakeLoopScene();
+  const LoopConstraint loop = MissedBy(scene.poses, 5, 25, 0.3);
+  const std::vector<LoopConstraint> held{MissedBy(scene.poses, 2, 18, 0.2),
+                                         MissedBy(scene.poses, 12, 22, 0.1)};
+  EXPECT_NEAR(scene.LoopTerm(loop, held), 0.6, 1e-9);
+
+  // Bending the stretch moves a held loop's later scan: its miss changes as the loop's does.
+  GlobalSearchParams params;
+  params.w1 = 0.0;
+  const GlobalSearchProblem alone(scene.log.scans, scene.poses, 10, 30, scene.empty, params, loop);
+  const GlobalSearchProblem holding(scene.log.scans, scene.poses, 10, 30, scene.empty, params, loop,
+                                    std::span(held).first(1));
+  Eigen::VectorXd x = alone.Identity();
+  x(0) = 0.25;  // the first partition's x error
+  std::vector<double> f_alone(2), f_holding(2);
+  alone.Evaluate(x, f_alone);
+  holding.Evaluate(x, f_holding);
+  const Pose2 moved = holding.Apply(x)[18 - 10];
+  const Pose2 expected = scene.poses[2] * held[0].relative;
+  EXPECT_NEAR(f_holding[1] - f_alone[1],
+              params.w2 * (moved.translation() - expected.translation()).norm(), 1e-9);
+  EXPECT_GT(std::abs(f_holding[1] - f_alone[1] - params.w2 * 0.2), 1e-3);
+
+  for (const LoopConstraint& outside :
+       {MissedBy(scene.poses, 2, 8, 0.1), MissedBy(scene.poses, 20, 12, 0.1)}) {
+    const std::vector<LoopConstraint> bad{outside};
+    EXPECT_THROW(
+        GlobalSearchProblem(scene.log.scans, scene.poses, 10, 30, scene.empty, params, loop, bad),
+        Error);
+  }
 }
 
 // A loop closed in place but not in heading leaves the later scan's walls turned: eq. 7 counts
@@ -305,6 +347,32 @@ TEST(GlobalSearchProblemTest, TheClosingCandidateClosesTheLoopWithinTheBounds) {
   // A loop that starts inside the stretch would bend with it.
   EXPECT_FALSE(
       GlobalSearchProblem(log.scans, poses, 3, 30, empty, params, loop).ClosingCandidate());
+}
+
+// Closing a loop bends the path under the loops found before it: the closing candidate keeps
+// those that start before the stretch where their matches put them.
+TEST(GlobalSearchProblemTest, TheClosingCandidateKeepsTheHeldLoopsClosed) {
+  const LoopScene scene = MakeLoopScene();
+  const std::vector<Pose2>& poses = scene.poses;
+  const LoopConstraint loop{5, 25, poses[5].inverse() * poses[25] * Pose2(0.3, -0.2, 0.05)};
+  const std::vector<LoopConstraint> held{
+      {2, 18, poses[2].inverse() * poses[18]},
+      {3, 21, poses[3].inverse() * poses[21] * Pose2(0.05, 0.0, 0.0)}};
+  const auto miss = [&](const GlobalSearchProblem& problem, const Eigen::VectorXd& x,
+                        const LoopConstraint& c) {
+    return (poses[c.earlier] * c.relative).inverse() * problem.Apply(x)[c.later - 10];
+  };
+  const GlobalSearchParams params;
+  const GlobalSearchProblem alone(scene.log.scans, poses, 10, 30, scene.empty, params, loop);
+  const GlobalSearchProblem holding(scene.log.scans, poses, 10, 30, scene.empty, params, loop,
+                                    held);
+  const Eigen::VectorXd x = *holding.ClosingCandidate();
+  for (const LoopConstraint& c : {loop, held[0], held[1]}) {
+    EXPECT_NEAR(miss(holding, x, c).translation().norm(), 0.0, 1e-9) << c.later;
+    EXPECT_NEAR(miss(holding, x, c).theta(), 0.0, 1e-9) << c.later;
+  }
+  // Alone, the loop's closing drags the held loops' later scans off.
+  EXPECT_GT(miss(alone, *alone.ClosingCandidate(), held[0]).translation().norm(), 0.05);
 }
 
 TEST(PickGlobalSolutionTest, LowestSecondObjectiveOfTheFirstFrontWithinTheBound) {

@@ -84,7 +84,7 @@ GlobalSearchProblem MakeGlobalSearchProblem(const Dataset& dataset, const Global
   global.max_error = task.max_error;
   if (!task.loop) global.w2 = 0.0;  // 002: a search not started by a loop has no W2 term
   return GlobalSearchProblem(dataset.scans, task.poses, task.first, task.last, base, global,
-                             task.loop);
+                             task.loop, task.held);
 }
 
 RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, std::uint64_t seed,
@@ -131,7 +131,15 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
     task.first = StretchStart(params, state, current, loop);
     task.last = current + 1;
     task.poses = state.poses;
-    if (loop) task.loop = loop->constraint;
+    if (loop) {
+      task.loop = loop->constraint;
+      if (params.hold_loops) {
+        for (std::size_t k = 0; k + 1 < state.loops.size(); ++k) {
+          const LoopConstraint& c = state.loops[k].constraint;
+          if (c.later >= task.first && c.later < task.last) task.held.push_back(c);
+        }
+      }
+    }
     task.max_error = GlobalSearchBounds(params, task.poses, task.loop);
     HitCountGrid base = map;
     for (std::size_t k = task.first; k < task.last; ++k) {

@@ -43,6 +43,9 @@ struct RssSlamParams {
   // fraction to be applied; 0: any improvement will do. A search that barely closes its loop
   // while it blurs the map is more likely bending the path to a place it never was.
   double min_eq7_gain = 0.0;
+  // A loop's search also keeps the loops found before it closed: eq. 7 adds the miss of every
+  // earlier loop whose later scan the stretch bends (docs/rss_slam.md).
+  bool hold_loops = false;
   // A search without a loop (every global_every scans) has only the map to go by, and eq. 6
   // cannot see below a cell: bending a stretch by millimetres sharpens it by a few thousandths
   // while it moves the trajectory centimetres off. Such a correction is applied only if it
@@ -110,6 +113,7 @@ struct GlobalSearchTask {
   std::size_t first = 0, last = 0;
   std::span<const Pose2> poses;  // scans [0, last)
   std::optional<LoopConstraint> loop;
+  std::vector<LoopConstraint> held;  // earlier loops whose later scan lies in [first, last)
   Eigen::Vector3d max_error = Eigen::Vector3d::Zero();  // each partition's, as bounded for this
 };
 

@@ -68,6 +68,7 @@ RssSlamParams RssSlamParamsFromProto(const proto::SlamParams& p) {
   if (p.has_loop_bound_scale()) r.loop_bound_scale = p.loop_bound_scale();
   if (p.has_sharpness_tolerance()) r.sharpness_tolerance = p.sharpness_tolerance();
   if (p.has_min_eq7_gain()) r.min_eq7_gain = p.min_eq7_gain();
+  if (p.has_hold_loops()) r.hold_loops = p.hold_loops();
   if (p.has_min_periodic_eq6_gain()) r.min_periodic_eq6_gain = p.min_periodic_eq6_gain();
   LoopDetectionParams& d = r.loops;
   if (p.has_revisit_radius_m()) d.revisit_radius = p.revisit_radius_m();
@@ -134,6 +135,7 @@ proto::SlamParams CompleteSlamParams(const proto::SlamParams& given) {
   p.set_loop_bound_scale(r.loop_bound_scale);
   p.set_sharpness_tolerance(r.sharpness_tolerance);
   p.set_min_eq7_gain(r.min_eq7_gain);
+  p.set_hold_loops(r.hold_loops);
   p.set_min_periodic_eq6_gain(r.min_periodic_eq6_gain);
   const LoopDetectionParams& d = r.loops;
   p.set_revisit_radius_m(d.revisit_radius);
@@ -208,6 +210,7 @@ proto::GlobalSearchSpec ToProto(const GlobalSearchTask& task) {
     spec.add_theta(task.poses[k].theta());
   }
   if (task.loop) *spec.mutable_loop() = ToProto(LoopClosure{*task.loop, 0.0, 0.0});
+  for (const LoopConstraint& h : task.held) *spec.add_held() = ToProto(LoopClosure{h, 0.0, 0.0});
   SetTriple(spec.mutable_max_error(), task.max_error);
   return spec;
 }
@@ -235,6 +238,15 @@ GlobalSearchTask GlobalSearchTaskFromProto(const proto::GlobalSearchSpec& spec,
   task.poses = poses;
   if (spec.has_loop())
     task.loop = LoopClosureFromProto(spec.loop(), n, "global search task").constraint;
+  for (const proto::LoopClosureRecord& h : spec.held()) {
+    const LoopConstraint held = LoopClosureFromProto(h, n, "global search task").constraint;
+    if (held.later < task.first) {
+      throw Error("global search task: the held loop from scan " + std::to_string(held.later) +
+                  " ends before the scans searched, [" + std::to_string(task.first) + ", " +
+                  std::to_string(task.last) + ")");
+    }
+    task.held.push_back(held);
+  }
   task.max_error = Triple(spec.max_error(), Eigen::Vector3d::Zero(), "max_error");
   return task;
 }

@@ -54,6 +54,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   p.set_local_refine_wall_share(0.0);
   p.set_min_periodic_eq6_gain(0.0);
   p.set_min_eq7_gain(0.1);
+  p.set_hold_loops(true);
   p.set_match_window_per_m(0.0);
   p.set_max_match_window_m(2.5);
   p.set_match_spread_score(0.0);
@@ -76,6 +77,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   EXPECT_EQ(r.min_periodic_eq6_gain, 0.0);
   EXPECT_EQ(r.local.refine.max_turn, 0.03);
   EXPECT_EQ(r.min_eq7_gain, 0.1);
+  EXPECT_TRUE(r.hold_loops);
   EXPECT_EQ(r.loops.match_window_per_metre, 0.0);
   EXPECT_EQ(r.loops.max_match_window, 2.5);
   EXPECT_EQ(r.loops.spread_score, 0.0);
@@ -163,6 +165,7 @@ TEST(SlamParamsTest, GlobalSearchTasksRoundTrip) {
   Eigen::Matrix2d spread;  // loose along one diagonal of the world
   spread << 0.2, 0.15, 0.15, 0.2;
   task.loop->weight = LoopWeight(spread, 0.4);
+  task.held = {LoopConstraint{0, 2, Pose2(-0.1, 0.2, 0.01)}};
   task.max_error = Eigen::Vector3d(0.3, 0.4, 0.05);
   std::vector<Pose2> storage;
   const GlobalSearchTask back = GlobalSearchTaskFromProto(ToProto(task), storage);
@@ -176,6 +179,9 @@ TEST(SlamParamsTest, GlobalSearchTasksRoundTrip) {
   EXPECT_EQ(back.loop->later, 3u);
   EXPECT_EQ(back.loop->relative.translation(), task.loop->relative.translation());
   EXPECT_EQ(back.loop->weight, task.loop->weight);
+  ASSERT_EQ(back.held.size(), 1u);
+  EXPECT_EQ(back.held[0].later, 2u);
+  EXPECT_EQ(back.held[0].relative.translation(), task.held[0].relative.translation());
   EXPECT_EQ(back.max_error, task.max_error);
   task.loop.reset();
   EXPECT_FALSE(GlobalSearchTaskFromProto(ToProto(task), storage).loop.has_value());
@@ -201,6 +207,17 @@ TEST(SlamParamsTest, TasksThatDoNotHangTogetherAreRefused) {
   spec = ToProto(task);
   spec.set_first(3);
   EXPECT_THROW(GlobalSearchTaskFromProto(spec, storage), Error);
+  // A held loop must end in the stretch, which is what bends it, and within the log.
+  for (const std::size_t later : {1u, 3u}) {
+    spec = ToProto(task);
+    spec.set_first(2);
+    *spec.add_held() = ToProto(LoopClosure{LoopConstraint{0, later, Pose2()}, 0.0, 0.0});
+    EXPECT_THROW(GlobalSearchTaskFromProto(spec, storage), Error) << later;
+  }
+  spec = ToProto(task);
+  spec.set_first(2);
+  *spec.add_held() = ToProto(LoopClosure{LoopConstraint{0, 2, Pose2()}, 0.0, 0.0});
+  EXPECT_EQ(GlobalSearchTaskFromProto(spec, storage).held.size(), 1u);
   // A loop's weight must be a positive semi-definite matrix no larger than the identity: one
   // that is not would reward a miss, or count it more than 002 does.
   task.loop = LoopConstraint{0, 2, Pose2(2, 0, 0)};
