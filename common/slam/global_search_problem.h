@@ -69,7 +69,8 @@ double WeightedLength(const Eigen::Vector2d& miss, double heading, const Eigen::
 // `base`, which holds every scan outside the stretch), and eq. 7 negated (w1 x the corrected
 // poses that stand on an occupied cell + w2 x how far the loop's later pose lands from where the
 // constraint puts it, as its weight measures it, and how far its returns turn from where it puts
-// them; no constraint, no second term).
+// them, summed over the loop and the `held` loops, those found before whose later scan lies in
+// [first, last); no constraint, no second term).
 class GlobalSearchProblem : public Problem {
  public:
   // `poses` holds the current poses of scans [0, last). The pose of scan max(first, 1) - 1 is
