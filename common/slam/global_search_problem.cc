@@ -47,9 +47,6 @@ GlobalSearchProblem::GlobalSearchProblem(std::span<const LaserScan> scans,
                 ") do not fit a log of " + std::to_string(scans.size()) + " scans and " +
                 std::to_string(poses.size()) + " poses");
   }
-  if (loop && (loop->earlier >= loop->later || loop->later < first || loop->later >= last)) {
-    throw Error("global search: the loop must end inside the scans searched, after it starts");
-  }
   steps_begin_ = std::max<std::size_t>(first, 1);
   anchor_ = Pose2Frame(poses[steps_begin_ - 1]);
   for (std::size_t j = steps_begin_; j < last; ++j)
@@ -67,12 +64,7 @@ GlobalSearchProblem::GlobalSearchProblem(std::span<const LaserScan> scans,
     for (std::size_t i = 0; i < all.size(); i += params.beam_stride) used.push_back(all[i]);
   }
   if (loop) observed_.push_back(Observe(scans, poses, *loop));
-  for (const LoopConstraint& h : held) {
-    if (h.earlier >= h.later || h.later < first || h.later >= last) {
-      throw Error("global search: a held loop must end inside the scans searched, after it starts");
-    }
-    observed_.push_back(Observe(scans, poses, h));
-  }
+  for (const LoopConstraint& h : held) observed_.push_back(Observe(scans, poses, h));
   const auto n = static_cast<Eigen::Index>(partitions * kGenesPerColumn);
   lower_.resize(n);
   upper_.resize(n);
@@ -260,6 +252,11 @@ void GlobalSearchProblem::Score(const Eigen::Ref<const Eigen::VectorXd>& x, Scra
 GlobalSearchProblem::Observation GlobalSearchProblem::Observe(std::span<const LaserScan> scans,
                                                               std::span<const Pose2> poses,
                                                               const LoopConstraint& loop) const {
+  if (loop.earlier >= loop.later || loop.later < first_ || loop.later >= last_) {
+    throw Error("global search: the loop from scan " + std::to_string(loop.later) + " back to " +
+                std::to_string(loop.earlier) + " must end inside the scans searched, [" +
+                std::to_string(first_) + ", " + std::to_string(last_) + "), after it starts");
+  }
   Observation o{.constraint = loop, .earlier_pose = {}, .lever = 0.0};
   if (loop.earlier < first_) o.earlier_pose = Pose2Frame(poses[loop.earlier]);
   const std::vector<Eigen::Vector2d> later = ReturnPoints(scans[loop.later]);
