@@ -67,8 +67,10 @@ void AddEvalCommand(CLI::App& app) {
       if (a.poses == 0) throw Error("no pose of the trajectory has ground truth at its timestamp");
       std::printf(
           "absolute: %zu poses, RMS x %.4f m, y %.4f m, heading %.3f deg, "
-          "translation %.4f m (max %.4f m)\n",
-          a.poses, a.rms_x, a.rms_y, Deg(a.rms_theta), a.rms_translation, a.max_translation);
+          "translation %.4f m (max %.4f m); aligned to the truth by a rigid motion, "
+          "translation %.4f m\n",
+          a.poses, a.rms_x, a.rms_y, Deg(a.rms_theta), a.rms_translation, a.max_translation,
+          a.aligned_rms_translation);
       relations = RelationsFromTruth(truth_poses);
     }
     const RelationErrors e = ComputeRelationErrors(trajectory, relations);

@@ -29,11 +29,13 @@
 namespace evoslam {
 namespace {
 
-// Root-mean-square distance of a trajectory's positions from the truth.
+// Root-mean-square distance of a trajectory's positions from the truth once a rigid motion aligns
+// them (the ATE of SLAM benchmarks): where a run puts its first poses fixes its frame, and is not
+// the error these tests are about.
 double Ate(const std::vector<StampedPose>& trajectory, const Dataset& d) {
   std::vector<StampedPose> truth;
   for (const LaserScan& s : d.scans) truth.push_back({s.timestamp, *s.true_pose});
-  return ComputeAbsoluteErrors(trajectory, truth).rms_translation;
+  return ComputeAbsoluteErrors(trajectory, truth).aligned_rms_translation;
 }
 
 TEST(LocalSearchAccuracyTest, CorrectsDriftingOdometryOnARealisticRoute) {
@@ -70,7 +72,7 @@ double Ate(std::span<const Pose2> poses, const Dataset& d) {
     estimate.push_back({d.scans[i].timestamp, poses[i]});
     truth.push_back({d.scans[i].timestamp, *d.scans[i].true_pose});
   }
-  return ComputeAbsoluteErrors(estimate, truth).rms_translation;
+  return ComputeAbsoluteErrors(estimate, truth).aligned_rms_translation;
 }
 
 // A drive through the office cluster whose odometry drifts, and the first place it comes back to:
@@ -120,7 +122,8 @@ TEST(GlobalSearchAccuracyTest, ClosingALoopWithThe002SearchUndoesTheDrift) {
   const std::vector<Pose2> corrected = problem.Apply(pop.x.col(static_cast<Eigen::Index>(best)));
 
   const double before = Ate(odometry, loop.log), after = Ate(corrected, loop.log);
-  EXPECT_LT(after, 0.5 * before) << "odometry " << before << " m, global search " << after << " m";
+  // 0.288 m to 0.045 m when this was written.
+  EXPECT_LT(after, before / 3) << "odometry " << before << " m, global search " << after << " m";
   double identity[2], found[2];
   problem.Evaluate(problem.Identity(), identity);
   problem.Evaluate(pop.x.col(static_cast<Eigen::Index>(best)), found);
@@ -150,11 +153,13 @@ TEST(RssSlamAccuracyTest, MapsTheOfficeClusterFromDriftingOdometry) {
   EXPECT_GE(slam.global_searches.size(), 3u);
   EXPECT_LT(slam_ate, odometry_ate / 3) << "odometry " << odometry_ate << " m, SLAM " << slam_ate;
   // The goal is a third of the local search's error; here the local search leaves under
-  // one 5 cm cell, which neither eq. 1 nor eq. 6 can see below (docs/rss_slam.md). The global
-  // searches must at least not undo it: 0.037 m local, 0.037 m with them when this was written
-  // (no loop found, and no search sharpened the map by the 1 % a correction without a loop
-  // needs; applied, the first two, each about 0.2 % sharper, took the error to 0.116 m).
-  EXPECT_LT(slam_ate, 1.2 * local_ate) << "local " << local_ate << " m, SLAM " << slam_ate;
+  // half of one 5 cm cell, which neither eq. 1 nor eq. 6 can see below (docs/rss_slam.md). The
+  // global searches must at least not undo it: odometry 2.92 m, local 0.020 m, 0.020 m with them
+  // when this was written (no loop found, and no search sharpened the map by the 1 % a
+  // correction without a loop needs; applied, the first two, each about 0.2 % sharper, had
+  // taken the error from 0.037 to 0.116 m before the alignment).
+  EXPECT_LT(slam_ate, 1.2 * local_ate)
+      << "odometry " << odometry_ate << " m, local " << local_ate << " m, SLAM " << slam_ate;
 }
 
 // 002's cube: its heading range grows neither with the turn odometry reports nor with the

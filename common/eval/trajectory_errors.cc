@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
+
+#include <Eigen/Geometry>
 
 namespace evoslam {
 
@@ -42,6 +45,33 @@ MeanStd Moments(const std::vector<double>& v) {
   return m;
 }
 
+// The RMS distance between `estimated` and `truth`, paired by index, after the rigid motion of
+// `estimated` that minimises it. In 2D the rotation has a closed form: the angle of the summed
+// cross and dot products of the centred pairs.
+double AlignedRms(std::span<const Eigen::Vector2d> estimated,
+                  std::span<const Eigen::Vector2d> truth) {
+  const auto n = static_cast<double>(estimated.size());
+  Eigen::Vector2d mean_e = Eigen::Vector2d::Zero(), mean_t = Eigen::Vector2d::Zero();
+  for (std::size_t i = 0; i < estimated.size(); ++i) {
+    mean_e += estimated[i];
+    mean_t += truth[i];
+  }
+  mean_e /= n;
+  mean_t /= n;
+  double dot = 0.0, cross = 0.0;
+  for (std::size_t i = 0; i < estimated.size(); ++i) {
+    const Eigen::Vector2d a = estimated[i] - mean_e, b = truth[i] - mean_t;
+    dot += a.dot(b);
+    cross += a.x() * b.y() - a.y() * b.x();
+  }
+  const Eigen::Rotation2Dd rotation(std::atan2(cross, dot));
+  double sum = 0.0;
+  for (std::size_t i = 0; i < estimated.size(); ++i) {
+    sum += (rotation * (estimated[i] - mean_e) - (truth[i] - mean_t)).squaredNorm();
+  }
+  return std::sqrt(sum / n);
+}
+
 }  // namespace
 
 AbsoluteErrors ComputeAbsoluteErrors(std::span<const StampedPose> estimate,
@@ -49,12 +79,15 @@ AbsoluteErrors ComputeAbsoluteErrors(std::span<const StampedPose> estimate,
   const TrajectoryIndex index(truth);
   AbsoluteErrors e;
   double sx = 0, sy = 0, st = 0;
+  std::vector<Eigen::Vector2d> estimated, true_positions;
   for (const StampedPose& p : estimate) {
     const auto t = index.At(p.timestamp);
     if (!t) {
       ++e.unmatched;
       continue;
     }
+    estimated.push_back(p.pose.translation());
+    true_positions.push_back(t->translation());
     const double dx = p.pose.x() - t->x();
     const double dy = p.pose.y() - t->y();
     const double dt = WrapAngle(p.pose.theta() - t->theta());
@@ -70,6 +103,7 @@ AbsoluteErrors ComputeAbsoluteErrors(std::span<const StampedPose> estimate,
     e.rms_y = std::sqrt(sy / n);
     e.rms_theta = std::sqrt(st / n);
     e.rms_translation = std::sqrt((sx + sy) / n);
+    e.aligned_rms_translation = AlignedRms(estimated, true_positions);
   }
   return e;
 }

@@ -24,7 +24,9 @@ class TrajectoryIndex {
 };
 
 // Absolute errors against ground truth, paired by timestamp: root mean square error per axis and
-// in heading (eq. 9 of the L1/L2 comparative study), and of the translation.
+// in heading (eq. 9 of the L1/L2 comparative study), and of the translation, all in the truth's
+// frame as the estimate stands. A SLAM run fixes its frame by its first pose, so an error in its
+// first steps shifts or turns everything after; `aligned_rms_translation` leaves that out.
 struct AbsoluteErrors {
   std::size_t poses = 0;      // poses paired
   std::size_t unmatched = 0;  // estimated poses with no truth at their timestamp
@@ -33,6 +35,10 @@ struct AbsoluteErrors {
   double rms_theta = 0.0;     // rad
   double rms_translation = 0.0;
   double max_translation = 0.0;
+  // The absolute trajectory error of SLAM benchmarks (Sturm et al. 2012): the RMS translation
+  // error once the estimate's positions are moved by the rotation and translation that bring
+  // them closest to the truth's in the least-squares sense (Horn 1987), m.
+  double aligned_rms_translation = 0.0;
 };
 AbsoluteErrors ComputeAbsoluteErrors(std::span<const StampedPose> estimate,
                                      std::span<const StampedPose> truth);

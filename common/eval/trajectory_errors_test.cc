@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 namespace evoslam {
 namespace {
@@ -40,6 +41,8 @@ TEST(AbsoluteErrorsTest, RmsPerAxisOfKnownOffsets) {
   EXPECT_NEAR(e.rms_theta, 0.5 * std::numbers::pi / 180, 1e-12);
   EXPECT_NEAR(e.rms_translation, 0.05, 1e-12);
   EXPECT_NEAR(e.max_translation, 0.05, 1e-12);
+  // The +-3 cm in x alternate and cancel; the 4 cm in y is a shift the alignment takes out.
+  EXPECT_NEAR(e.aligned_rms_translation, 0.03, 1e-3);
 }
 
 TEST(AbsoluteErrorsTest, PairsByTimestampNotByIndex) {
@@ -50,6 +53,39 @@ TEST(AbsoluteErrorsTest, PairsByTimestampNotByIndex) {
   EXPECT_EQ(e.poses, truth.size());
   EXPECT_EQ(e.unmatched, 1u);
   EXPECT_EQ(e.rms_translation, 0.0);
+}
+
+TEST(AbsoluteErrorsTest, AlignedErrorLeavesOutARigidMotion) {
+  const auto truth = Square();
+  std::vector<StampedPose> moved = truth;
+  const Pose2 offset(5.0, -2.0, 0.7);
+  for (auto& p : moved) p.pose = offset * p.pose;
+  const AbsoluteErrors e = ComputeAbsoluteErrors(moved, truth);
+  EXPECT_GT(e.rms_translation, 1.0);
+  EXPECT_NEAR(e.aligned_rms_translation, 0.0, 1e-9);
+}
+
+TEST(AbsoluteErrorsTest, AlignedErrorOfATrajectoryDrawnTooLarge) {
+  // Drawn 10 % too large about its centroid, then moved: no rigid motion undoes the scale, and the
+  // best one undoes the move, which leaves a tenth of each position's distance from the centroid.
+  const auto truth = Square();
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+  for (const StampedPose& p : truth) centroid += p.pose.translation();
+  centroid /= static_cast<double>(truth.size());
+  std::vector<StampedPose> estimate = truth;
+  double expected = 0.0;
+  const Pose2 offset(-1.0, 4.0, -2.1);
+  for (StampedPose& p : estimate) {
+    const Eigen::Vector2d from_centroid = p.pose.translation() - centroid;
+    expected += (0.1 * from_centroid).squaredNorm();
+    const Eigen::Vector2d drawn = centroid + 1.1 * from_centroid;
+    p.pose = offset * Pose2(drawn.x(), drawn.y(), p.pose.theta());
+  }
+  expected = std::sqrt(expected / static_cast<double>(truth.size()));
+  const AbsoluteErrors e = ComputeAbsoluteErrors(estimate, truth);
+  EXPECT_NEAR(e.aligned_rms_translation, expected, 1e-9);
+  EXPECT_GT(expected, 0.1);
+  EXPECT_GT(e.rms_translation, 3.0);
 }
 
 TEST(RelationErrorsTest, MeasuresRelativeNotAbsoluteError) {

@@ -25,6 +25,7 @@ proto::AbsoluteErrors ToProto(const AbsoluteErrors& e) {
   p.set_rms_theta_deg(Deg(e.rms_theta));
   p.set_rms_translation_m(e.rms_translation);
   p.set_max_translation_m(e.max_translation);
+  p.set_aligned_rms_translation_m(e.aligned_rms_translation);
   return p;
 }
 
@@ -69,7 +70,8 @@ std::string FormatAbsoluteErrors(const proto::AbsoluteErrors& a) {
   s.setf(std::ios::fixed);
   s.precision(2);
   s << "x " << 100 * a.rms_x_m() << " cm, y " << 100 * a.rms_y_m() << " cm, heading "
-    << a.rms_theta_deg() << " deg (max " << 100 * a.max_translation_m() << " cm)";
+    << a.rms_theta_deg() << " deg (max " << 100 * a.max_translation_m()
+    << " cm); aligned: " << 100 * a.aligned_rms_translation_m() << " cm";
   return s.str();
 }
 

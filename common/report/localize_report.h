@@ -36,7 +36,8 @@ std::optional<proto::RelationErrors> RelationErrorsReport(
     std::span<const StampedPose> trajectory, std::span<const StampedPose> truth,
     const std::optional<NamedRelations>& relations);
 
-// "x 0.71 cm, y 0.66 cm, heading 0.20 deg (max 2.45 cm)", as the summaries print it.
+// "x 0.71 cm, y 0.66 cm, heading 0.20 deg (max 2.45 cm); aligned: 0.52 cm", as the summaries
+// print it; the last is the RMS translation error once the trajectory is aligned to the truth.
 std::string FormatAbsoluteErrors(const proto::AbsoluteErrors& errors);
 // "0.0114 +- 0.0073 m, 0.500 +- 0.300 deg", as the summaries print it.
 std::string FormatRelationErrors(const proto::RelationErrors& errors);
