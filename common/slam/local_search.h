@@ -51,9 +51,10 @@ struct LocalSearchParams {
   // When not negative, a step is scored without the returns that lie farther than the previous
   // scan's range minus this margin (m) from the previous pose. Those land beyond the map's edge
   // whatever the correction, and the shorter the step the fewer new cells they occupy, so they
-  // pull every step short where the laser sees less than the place holds. Negative (the
-  // default): every return is scored, as in 002.
-  double frontier_margin = -1.0;
+  // pull every step short where the laser sees less than the place holds. The default leaves a
+  // step of the simulated drives (13 cm), a cell and the range noise room; negative: every
+  // return is scored, as in 002.
+  double frontier_margin = 0.3;
   // After the PSO, the step's pose is aligned to the map below a cell (our addition; 002 has
   // none). iterations = 0 leaves the PSO's pose, as in 002.
   ScanRefinementParams refine;

@@ -234,7 +234,7 @@ TEST(LocalSearchTest, DownAHallLongerThanTheLasersReachTheFrontierDoesNotPullThe
   };
   // The odometry is exact, so any shortfall is the score's pull. What remains with the frontier
   // left out comes from the wall each door frame hid from the previous scan.
-  const double all = shortfall(-1.0), within = shortfall(0.15);
+  const double all = shortfall(-1.0), within = shortfall(LocalSearchParams{}.frontier_margin);
   EXPECT_GT(all, 2.0);
   EXPECT_LT(std::abs(within), all / 3) << "every return scored: " << all << " m short";
 }
