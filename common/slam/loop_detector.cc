@@ -113,16 +113,16 @@ std::optional<LoopClosure> DetectLoop(std::span<const LaserScan> scans,
     return std::nullopt;
   }
 
-  LoopConstraint constraint{*earlier, current, poses[*earlier].inverse() * match.pose};
-  if (params.spread_score > 0.0) {
-    constraint.weight = LoopWeight(match.spread, poses[*earlier].theta());
-  }
+  const Eigen::Matrix2d weight = params.spread_score > 0.0
+                                     ? LoopWeight(match.spread, poses[*earlier].theta())
+                                     : Eigen::Matrix2d::Identity();
   // The shift is in the current scan's frame; the weight, in the earlier scan's.
   const Pose2 shift = poses[current].inverse() * match.pose;
-  if (FitsWhereItIs(shift, poses[*earlier].theta() - poses[current].theta(), constraint.weight,
-                    params)) {
+  if (FitsWhereItIs(shift, poses[*earlier].theta() - poses[current].theta(), weight, params)) {
     return std::nullopt;
   }
+  LoopConstraint constraint{*earlier, current, poses[*earlier].inverse() * match.pose};
+  if (params.spread_weights_eq7) constraint.weight = weight;
   return LoopClosure{constraint, match.score, match.distinctness};
 }
 

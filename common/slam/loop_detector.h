@@ -43,6 +43,9 @@ struct LoopDetectionParams {
   // little. 0 (the default): every direction counts the same, as in 002; weighting was no
   // better on the real logs (docs/accuracy.md).
   double spread_score = 0.0;
+  // With spread_score above 0, false weighs the fit test alone: a shift along a corridor the match
+  // cannot pin is not taken as drift, and the loops found are closed as 002 closes them.
+  bool spread_weights_eq7 = true;
   // ...and the scan does not fit where the trajectory puts it when the match moves it further
   // than this.
   double fit_tolerance = 0.1;         // m

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <cmath>
 #include <limits>
 #include <span>
@@ -64,6 +65,36 @@ TEST(LoopDetectorTest, ARevisitThatDoesNotFitIsALoopWithTheTrueRelativePose) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(weighted->constraint.weight);
   EXPECT_NEAR(eigen.eigenvalues().maxCoeff(), 1.0, 1e-9);
   EXPECT_GT(eigen.eigenvalues().minCoeff(), 0.3);
+}
+
+TEST(LoopDetectorTest, TheSpreadCanWeighTheFitTestAlone) {
+  const Revisit r = DriveBack();
+  std::vector<Pose2> poses(r.truth.begin(), r.truth.begin() + r.later + 1);
+  poses.back() = poses.back() * Pose2(0.4, -0.2, 0.1);
+  LoopDetectionParams params;
+  params.spread_score = 0.01;
+  const auto both = DetectLoop(r.log.scans, poses, r.later, params);
+  params.spread_weights_eq7 = false;
+  const auto fit_only = DetectLoop(r.log.scans, poses, r.later, params);
+  ASSERT_TRUE(both.has_value());
+  ASSERT_TRUE(fit_only.has_value());
+  EXPECT_NE(both->constraint.weight, Eigen::Matrix2d::Identity());
+  EXPECT_EQ(fit_only->constraint.weight, Eigen::Matrix2d::Identity());
+  EXPECT_EQ(fit_only->constraint.relative.translation(), both->constraint.relative.translation());
+  // The fit test still weighs the shift: with a tolerance the weighted shift exceeds but the
+  // plain one does not, the revisit fits only when the weight counts there.
+  const Pose2 shift =
+      poses.back().inverse() * poses[both->constraint.earlier] * both->constraint.relative;
+  const double plain = shift.translation().norm();
+  const double weighted =
+      WeightedLength(Eigen::Rotation2Dd(poses.back().theta()) * shift.translation(),
+                     poses[both->constraint.earlier].theta(), both->constraint.weight);
+  ASSERT_LT(weighted, plain);
+  params.fit_tolerance_theta = 1.0;
+  params.fit_tolerance = 0.5 * (weighted + plain);
+  EXPECT_FALSE(DetectLoop(r.log.scans, poses, r.later, params).has_value());
+  params.spread_score = 0.0;
+  EXPECT_TRUE(DetectLoop(r.log.scans, poses, r.later, params).has_value());
 }
 
 TEST(LoopDetectorTest, ARevisitThatFitsIsNoLoop) {

@@ -87,6 +87,7 @@ RssSlamParams RssSlamParamsFromProto(const proto::SlamParams& p) {
   if (p.has_min_distinctness()) d.min_distinctness = p.min_distinctness();
   if (p.has_rival_distance_m()) d.rival_distance = p.rival_distance_m();
   if (p.has_match_spread_score()) d.spread_score = p.match_spread_score();
+  if (p.has_match_spread_in_eq7()) d.spread_weights_eq7 = p.match_spread_in_eq7();
   ValidateRssSlamParams(r);
   return r;
 }
@@ -154,6 +155,7 @@ proto::SlamParams CompleteSlamParams(const proto::SlamParams& given) {
   p.set_min_distinctness(d.min_distinctness);
   p.set_rival_distance_m(d.rival_distance);
   p.set_match_spread_score(d.spread_score);
+  p.set_match_spread_in_eq7(d.spread_weights_eq7);
   return p;
 }
 

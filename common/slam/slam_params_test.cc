@@ -58,6 +58,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   p.set_match_window_per_m(0.0);
   p.set_max_match_window_m(2.5);
   p.set_match_spread_score(0.0);
+  p.set_match_spread_in_eq7(false);
   p.set_local_fitness("eval2");
   p.set_local_only(true);
   for (double v : {0.2, 0.3, 0.04}) p.add_local_max_error(v);
@@ -81,6 +82,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   EXPECT_EQ(r.loops.match_window_per_metre, 0.0);
   EXPECT_EQ(r.loops.max_match_window, 2.5);
   EXPECT_EQ(r.loops.spread_score, 0.0);
+  EXPECT_FALSE(r.loops.spread_weights_eq7);
   EXPECT_EQ(r.local.fitness, LocalFitness::kEval2);
   EXPECT_FALSE(r.global_search);
   EXPECT_EQ(r.local.max_error, Eigen::Vector3d(0.2, 0.3, 0.04));
