@@ -278,9 +278,9 @@ TEST(RssSlamAccuracyTest, OnTheIntelLabTheGlobalSearchesOrATurnWideCubeHalveTheF
 // (0.050 m). Seed 2, when this was written: 0.040 against 0.073 m over all relations, 0.073
 // against 0.559 m over those across loops; over seeds 1 to 16, 0.042 against 0.054 m and 0.096
 // against 0.254 m, bending all of them worse on seed 15 over all relations and on seeds 5 and 15
-// across loops (docs/rss_slam.md). Seed 3, used before
-// the local search left out the returns beyond the previous scan's reach, now closes its first
-// loop well enough that the later revisits fit, and its loops across are level.
+// across loops (docs/rss_slam.md). Seed 3, used before the local search left out the returns
+// beyond the previous scan's reach, now closes its first loop well enough that the later
+// revisits fit, and its loops across are level.
 TEST(RssSlamAccuracyTest, OnAcesLoopsOfThousandsOfStepsCloseWhenTheirSearchesBendAllOfThem) {
   const std::optional<RealLog> aces = ReadRealLog("aces");
   if (!aces) GTEST_SKIP() << "real data absent from " << EVOSLAM_DATA_DIR;

@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/Geometry>
 #include <cmath>
 #include <limits>
 #include <span>
@@ -86,9 +85,9 @@ TEST(LoopDetectorTest, TheSpreadCanWeighTheFitTestAlone) {
   const Pose2 shift =
       poses.back().inverse() * poses[both->constraint.earlier] * both->constraint.relative;
   const double plain = shift.translation().norm();
-  const double weighted =
-      WeightedLength(Eigen::Rotation2Dd(poses.back().theta()) * shift.translation(),
-                     poses[both->constraint.earlier].theta(), both->constraint.weight);
+  const double weighted = WeightedLength(
+      shift.translation(), poses[both->constraint.earlier].theta() - poses.back().theta(),
+      both->constraint.weight);
   ASSERT_LT(weighted, plain);
   params.fit_tolerance_theta = 1.0;
   params.fit_tolerance = 0.5 * (weighted + plain);
