@@ -46,6 +46,8 @@ void ValidateLocalSearchParams(const LocalSearchParams& p) {
   if (p.recentres > 100) throw Error("local search: at most 100 recentred searches per step");
   if (!(p.resolution > 0.0)) throw Error("local search: the map resolution must be positive");
   if (!(p.margin >= 0.0)) throw Error("local search: the map margin must not be negative");
+  if (!(p.odometry_pull >= 0.0 && p.odometry_pull < 1.0))
+    throw Error("local search: the odometry pull must be in [0, 1)");
   if (!std::isfinite(p.frontier_margin))
     throw Error("local search: the frontier margin must be finite");
   ValidateScanRefinementParams(p.refine);
@@ -115,7 +117,8 @@ StepCorrection CorrectStep(const HitCountGrid& map, const LaserScan& scan, const
   StepCorrection result{predicted, 0};
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t round = 0; round <= params.recentres; ++round) {
-    const StepCorrectionProblem problem(map, scan, result.pose, params.max_error, params.fitness);
+    const StepCorrectionProblem problem(map, scan, result.pose, params.max_error, params.fitness,
+                                        params.odometry_pull);
     ParticleSwarm swarm(pso);
     Rng stream = round == 0 ? rng : rng.Stream(round);
     const OptimResult r = Minimize(problem, swarm, stop, stream);

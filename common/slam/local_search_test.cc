@@ -222,9 +222,10 @@ TEST(LocalSearchTest, DownAHallLongerThanTheLasersReachTheFrontierDoesNotPullThe
     scan.odometry = pose;
     drive.scans.push_back(std::move(scan));
   }
-  const auto shortfall = [&](double margin) {
+  const auto shortfall = [&](double margin, double pull = LocalSearchParams{}.odometry_pull) {
     LocalSearchParams params;
     params.frontier_margin = margin;
+    params.odometry_pull = pull;
     // The score's pull alone: the refinement, drawn to the wall's mapped end, adds its own (5.1
     // against 3.3 m short with every return scored).
     params.refine.iterations = 0;
@@ -237,6 +238,10 @@ TEST(LocalSearchTest, DownAHallLongerThanTheLasersReachTheFrontierDoesNotPullThe
   const double all = shortfall(-1.0), within = shortfall(LocalSearchParams{}.frontier_margin);
   EXPECT_GT(all, 2.0);
   EXPECT_LT(std::abs(within), all / 3) << "every return scored: " << all << " m short";
+  // Where the frame's hidden wall leaves the score flat, the swarm's pick among equal counts
+  // wanders; the odometry pull keeps such steps where odometry puts them (0.5 against 1.0 m).
+  const double unpulled = shortfall(LocalSearchParams{}.frontier_margin, 0.0);
+  EXPECT_LT(std::abs(within), 0.75 * unpulled) << "without the pull: " << unpulled << " m short";
 }
 
 TEST(WithinPreviousReachTest, DropsTheReturnsBeyondThePreviousScansReach) {

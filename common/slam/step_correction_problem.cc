@@ -29,10 +29,14 @@ std::string_view LocalFitnessName(LocalFitness fitness) {
 
 StepCorrectionProblem::StepCorrectionProblem(const HitCountGrid& map, const LaserScan& scan,
                                              const Pose2& predicted,
-                                             const Eigen::Vector3d& max_error, LocalFitness fitness)
+                                             const Eigen::Vector3d& max_error, LocalFitness fitness,
+                                             double odometry_pull)
     : map_(map), predicted_(predicted), fitness_(fitness), lower_(-max_error), upper_(max_error) {
   if (!(max_error.array() >= 0.0).all() || !max_error.allFinite()) {
     throw Error("local search: the maximum step error must be finite and not negative");
+  }
+  if (!(odometry_pull >= 0.0) || !std::isfinite(odometry_pull)) {
+    throw Error("local search: the odometry pull must be finite and not negative");
   }
   returns_ = ReturnPoints(scan);
   double reach = 0.0;
@@ -53,6 +57,15 @@ StepCorrectionProblem::StepCorrectionProblem(const HitCountGrid& map, const Lase
     window_ = map.Window(clamp(std::floor(c0.x())), clamp(std::floor(c0.y())),
                          clamp(std::floor(c1.x())) + 1, clamp(std::floor(c1.y())) + 1);
   }
+  if (odometry_pull > 0.0) {
+    const double cell = fitness == LocalFitness::kEval1
+                            ? 1.0
+                            : 1.0 / static_cast<double>(std::max<std::size_t>(1, window_.occupied));
+    for (int axis = 0; axis < 3; ++axis) {
+      if (max_error(axis) > 0.0)
+        pull_(axis) = odometry_pull * cell / (3.0 * max_error(axis) * max_error(axis));
+    }
+  }
 }
 
 Pose2 StepCorrectionProblem::Corrected(const Eigen::Ref<const Eigen::VectorXd>& error) const {
@@ -70,9 +83,10 @@ double StepCorrectionProblem::Score(const Eigen::Ref<const Eigen::VectorXd>& err
   HitCountGrid::Insertion added;  // fresh: the cells the scan makes occupied
   map_.CountInsertion(Pose2Frame(Corrected(error)), returns_, cells, added);
   const double occupied = static_cast<double>(window_.occupied + added.fresh);
-  if (fitness_ == LocalFitness::kEval1) return occupied;
+  const double pull = pull_.dot(error.head<3>().cwiseAbs2());
+  if (fitness_ == LocalFitness::kEval1) return occupied + pull;
   const double total = static_cast<double>(window_.total + added.inside);
-  return occupied > 0 ? -total / occupied : 0.0;
+  return (occupied > 0 ? -total / occupied : 0.0) + pull;
 }
 
 void StepCorrectionProblem::Evaluate(const Eigen::Ref<const Eigen::MatrixXd>& candidates,

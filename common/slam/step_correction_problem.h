@@ -27,11 +27,15 @@ std::string_view LocalFitnessName(LocalFitness fitness);
 // candidate is scored by inserting the scan's returns at the corrected pose into the map. The
 // part of the map being updated is the box of cells any candidate's returns can reach, so the
 // scores of all candidates are taken over the same cells. Minimised: eval1 as it is, eval2
-// negated.
+// negated. With an odometry pull p, a candidate also pays p cells' worth of score times its mean
+// squared correction relative to max_error (the axes with no room pay nothing), so that of two
+// corrections that fit alike the smaller wins; a cell's worth is 1 in eval1, and in eval2 what one
+// more observation of an occupied cell of the window is worth.
 class StepCorrectionProblem : public Problem {
  public:
   StepCorrectionProblem(const HitCountGrid& map, const LaserScan& scan, const Pose2& predicted,
-                        const Eigen::Vector3d& max_error, LocalFitness fitness);
+                        const Eigen::Vector3d& max_error, LocalFitness fitness,
+                        double odometry_pull = 0.0);
 
   const Eigen::VectorXd& lower() const override { return lower_; }
   const Eigen::VectorXd& upper() const override { return upper_; }
@@ -50,6 +54,8 @@ class StepCorrectionProblem : public Problem {
   const HitCountGrid& map_;
   Pose2Frame predicted_;
   LocalFitness fitness_;
+  // The pull per axis, in score per squared unit of correction.
+  Eigen::Vector3d pull_ = Eigen::Vector3d::Zero();
   std::vector<Eigen::Vector2d> returns_;  // the scan's end points in the laser's frame
   HitCountGrid::WindowSums window_;       // the part of the map being updated, before the scan
   Eigen::VectorXd lower_, upper_;

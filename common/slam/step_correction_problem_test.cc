@@ -120,6 +120,73 @@ INSTANTIATE_TEST_SUITE_P(BothScores, StepCorrectionTest,
                            return std::string(LocalFitnessName(info.param));
                          });
 
+// A corridor mapped end to end, and a scan from its middle: eq. 1 pins the pose across the
+// corridor and its heading, not along it.
+struct Corridor {
+  HitCountGrid map{0.05, Eigen::Vector2d(-12.0, -1.0), 480, 60};
+  LaserScan next;
+  Pose2 next_pose{0.5, 1.01, 0.0};
+};
+
+Corridor MakeCorridor() {
+  Corridor c;
+  const LineMap walls({{{-60.0, 0.02}, {60.0, 0.02}}, {{-60.0, 2.02}, {60.0, 2.02}}});
+  for (double x = -10.0; x <= 10.0; x += 0.25) {
+    const Pose2 pose(x, 1.01, 0.0);
+    c.map.AddScan(testing::ScanFrom(walls, pose), pose);
+  }
+  c.next = testing::ScanFrom(walls, c.next_pose);
+  return c;
+}
+
+// The correction PSO finds along the corridor, for a step odometry gets right.
+double ShiftAlongCorridor(const Corridor& c, double pull, std::uint64_t seed) {
+  const StepCorrectionProblem problem(c.map, c.next, c.next_pose,
+                                      Eigen::Vector3d(0.1, 0.1, 3.0 * kDeg), LocalFitness::kEval1,
+                                      pull);
+  AlgorithmSpec spec;
+  spec.kind = AlgorithmKind::kPso;
+  spec.pso.particles = 10;
+  const std::unique_ptr<Algorithm> pso = MakeAlgorithm(spec);
+  StopCriteria stop;
+  stop.max_generations = 30;
+  Rng rng(seed);
+  return Minimize(problem, *pso, stop, rng).best(0);
+}
+
+TEST(StepCorrectionProblemTest, OdometryPullKeepsAStepAlongACorridorWhereOdometryPutsIt) {
+  const Corridor c = MakeCorridor();
+  double loosest = 0.0;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    loosest = std::max(loosest, std::abs(ShiftAlongCorridor(c, 0.0, seed)));
+    EXPECT_LT(std::abs(ShiftAlongCorridor(c, 0.5, seed)), 0.005) << "seed " << seed;
+  }
+  // Without the pull, the swarm settles anywhere along the flat score.
+  EXPECT_GT(loosest, 0.02);
+}
+
+TEST(StepCorrectionProblemTest, OdometryPullAddsUnderOneCellAndNeverOutweighsABetterFit) {
+  const Scene s = MakeScene();
+  const Eigen::Vector3d cube(0.2, 0.2, 5.0 * kDeg);
+  const Pose2 predicted = s.next_pose * Pose2(0.12, -0.08, 3.0 * kDeg);
+  const StepCorrectionProblem plain(s.map, s.next, predicted, cube, LocalFitness::kEval1);
+  const StepCorrectionProblem pulled(s.map, s.next, predicted, cube, LocalFitness::kEval1, 0.9);
+  Rng rng(7);
+  for (int i = 0; i < 50; ++i) {
+    Eigen::Vector3d e;
+    for (int g = 0; g < 3; ++g) e(g) = rng.Uniform(-cube(g), cube(g));
+    const double extra = pulled.Score(e) - plain.Score(e);
+    EXPECT_NEAR(extra, 0.9 * e.cwiseQuotient(cube).squaredNorm() / 3.0, 1e-9);
+    EXPECT_LT(extra, 0.9 + 1e-12);
+  }
+  EXPECT_EQ(pulled.Score(Eigen::Vector3d::Zero()), plain.Score(Eigen::Vector3d::Zero()));
+  // The true correction fits better by whole cells, so the pull leaves it the best.
+  const Eigen::Vector3d truth = AsVector(Pose2(0.12, -0.08, 3.0 * kDeg).inverse());
+  EXPECT_LT(pulled.Score(truth), pulled.Score(Eigen::Vector3d::Zero()));
+  EXPECT_THROW(StepCorrectionProblem(s.map, s.next, predicted, cube, LocalFitness::kEval1, -0.1),
+               Error);
+}
+
 TEST(StepCorrectionProblemTest, Eval1CountsTheCellsTheScanLeavesOccupied) {
   HitCountGrid map(1.0, Eigen::Vector2d(-10, -10), 20, 20);
   map.Add({3.5, 0.5});    // where the first beam ends
