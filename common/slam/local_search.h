@@ -59,8 +59,9 @@ struct LocalSearchParams {
   // the laser does not reach. There the swarm's pick among equal scores is a random point of the
   // cube, and a run of such steps drifts. Each candidate's score grows by this fraction of one
   // cell times its mean squared correction relative to the cube, so that among corrections that
-  // fit alike the one nearest odometry wins; below 1, a fit one cell better always wins, and
-  // eq. 1's counts rank alike for every value in (0, 1). 0: none, as in 002 (docs/rss_slam.md).
+  // fit alike the one nearest odometry (on a recentred cube, its centre) wins; below 1, a fit
+  // one cell better always wins, and eq. 1's counts rank alike for every value in (0, 1).
+  // 0: none, as in 002 (docs/rss_slam.md).
   double odometry_pull = 0.5;
   // After the PSO, the step's pose is aligned to the map below a cell (our addition; 002 has
   // none). iterations = 0 leaves the PSO's pose, as in 002.
