@@ -46,6 +46,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   p.set_global_beam_stride(1);
   p.set_global_scored_scans(0);
   p.set_local_frontier_margin_m(0.15);
+  p.set_local_odometry_pull(0.0);
   p.set_local_turn_error_per_rad(0.0);
   p.set_local_carried_turn_error(0.0);
   p.set_local_refine_iterations(0);
@@ -70,6 +71,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   EXPECT_EQ(r.global.beam_stride, 1u);
   EXPECT_EQ(r.global.scored_scans, 0u);
   EXPECT_EQ(r.local.frontier_margin, 0.15);
+  EXPECT_EQ(r.local.odometry_pull, 0.0);
   EXPECT_EQ(r.local.turn_error_per_rad, 0.0);
   EXPECT_EQ(r.local.carried_turn_error, 0.0);
   EXPECT_EQ(r.local.refine.iterations, 0u);
@@ -123,6 +125,11 @@ TEST(SlamParamsTest, BadFieldsAreNamed) {
   p = {};
   p.set_local_frontier_margin_m(std::numeric_limits<double>::quiet_NaN());
   EXPECT_NE(ErrorOf(p).find("frontier margin"), std::string::npos);
+  for (double pull : {-0.1, 1.0, std::numeric_limits<double>::quiet_NaN()}) {
+    p = {};
+    p.set_local_odometry_pull(pull);
+    EXPECT_NE(ErrorOf(p).find("odometry pull"), std::string::npos) << pull;
+  }
   p = {};
   p.set_local_turn_error_per_rad(-0.1);
   EXPECT_NE(ErrorOf(p).find("per radian turned"), std::string::npos);
