@@ -26,7 +26,10 @@ struct GlobalSearchParams {
   Eigen::Vector3d max_error{1.0, 1.0, 0.3};
   // The Gaussian of eq. 5 per axis, as a fraction of a partition's length.
   Eigen::Vector3d sigma{0.3, 0.3, 0.3};
-  double w1 = 0.5;  // eq. 7: weight of path cells on obstacles (002 Fig. 11: 0.5)
+  // Eq. 7: weight of each corrected pose that stands on an occupied cell (002 Fig. 11: 0.5). The
+  // term is a count and the loop's a length: w1 / w2 is the metres of loop miss one such pose is
+  // worth, a metre with 002's weights (docs/rss_slam.md has smaller ones measured).
+  double w1 = 0.5;
   // Eq. 7: weight of the distance between two observations of one place: how far the loop's
   // later scan lands from where the match puts it, its heading's miss counted by how far it
   // moves the scan's returns (docs/rss_slam.md).
