@@ -39,6 +39,8 @@ void ValidateLocalSearchParams(const LocalSearchParams& p) {
   if (!(p.turn_error_per_rad >= 0.0) || !std::isfinite(p.turn_error_per_rad))
     throw Error(
         "local search: the heading error per radian turned must be finite and not negative");
+  if (!std::isfinite(p.carried_turn_shift))
+    throw Error("local search: the shift by the previous step's heading correction must be finite");
   if (!(p.carried_turn_error >= 0.0) || !std::isfinite(p.carried_turn_error))
     throw Error(
         "local search: the share of the previous step's heading correction must be finite and "
@@ -162,13 +164,14 @@ StepCorrection CorrectLogStep(const HitCountGrid& map, const Dataset& dataset,
   const LaserScan& previous = dataset.scans[i - 1];
   const Pose2& previous_pose = poses[i - 1];
   const Pose2 step = previous.odometry.inverse() * scan.odometry;
-  const Pose2 predicted = previous_pose * step;
   double previous_turn_correction = 0.0;
   if (i >= 2) {
     const Pose2 odometry_before = dataset.scans[i - 2].odometry.inverse() * previous.odometry;
     const Pose2 taken_before = poses[i - 2].inverse() * previous_pose;
     previous_turn_correction = (odometry_before.inverse() * taken_before).theta();
   }
+  const Pose2 predicted =
+      previous_pose * step * Pose2(0.0, 0.0, -params.carried_turn_shift * previous_turn_correction);
   LocalSearchParams for_step = params;
   for_step.max_error = StepErrorCube(params, step, previous_turn_correction);
   if (params.frontier_margin < 0.0) return CorrectStep(map, scan, predicted, for_step, rng);

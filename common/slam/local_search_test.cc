@@ -131,16 +131,21 @@ TEST(CorrectLogStepTest, AHeadingCorrectionTakenOneStepIsAllowedForInTheNext) {
   drive.scans[1].odometry = start * Pose2(0.05, 0.0, 0.3 + 0.2);
   drive.scans[2].odometry = drive.scans[1].odometry * Pose2(0.05, 0.0, 0.3 - 0.2);
   const std::vector<Pose2> poses{start, first};  // the first step corrected by -0.2 rad
-  const auto heading_error = [&](double carried) {
+  const auto heading_error = [&](double carried, double shift) {
     LocalSearchParams params;  // the cube alone: 0.05 + 0.6 * 0.1 rad without the carry
     params.recentres = 0;
     params.refine.iterations = 0;
     params.carried_turn_error = carried;
+    params.carried_turn_shift = shift;
     const StepCorrection c = CorrectLogStep(map, drive, poses, params, Rng(4));
     return std::abs((second.inverse() * c.pose).theta());
   };
-  EXPECT_GT(heading_error(0.0), 0.05);
-  EXPECT_LT(heading_error(0.5), 0.01);
+  EXPECT_GT(heading_error(0.0, 0.0), 0.05);
+  EXPECT_LT(heading_error(0.5, 0.0), 0.01);
+  // Moved by the 0.2 rad owed, a cube no wider than the turn makes it holds the step's heading;
+  // moved the other way, it cannot.
+  EXPECT_LT(heading_error(0.0, 1.0), 0.01);
+  EXPECT_GT(heading_error(0.0, -1.0), 0.05);
 }
 
 TEST(CorrectLogStepTest, RefusesAStepWithoutAPoseBeforeIt) {
