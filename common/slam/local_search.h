@@ -40,9 +40,9 @@ struct LocalSearchParams {
   // correction (docs/rss_slam.md).
   double carried_turn_error = 0.5;
   // ...and its centre moves from odometry's heading by minus this fraction of that correction:
-  // the part of a turn one step's odometry over-reported is owed to the next step, so the search
-  // looks for it there first. 0: centred on odometry. With 6 cm cells 0.5 keeps ACES's fast
-  // in-place turns from slipping (docs/accuracy.md); with 5 cm cells it does not help.
+  // as much of a turn as one step's odometry reported too much, the next tends to report too
+  // little, and the other way round. 0: centred on odometry. With 6 cm cells 0.5 keeps ACES's
+  // fast in-place turns from slipping (docs/accuracy.md); with 5 cm cells it does not help.
   double carried_turn_shift = 0.0;
   std::size_t particles = 10;  // 002
   std::size_t iterations = 30;
