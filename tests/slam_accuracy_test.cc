@@ -200,14 +200,16 @@ TEST(LoopDetectionAccuracyTest, NoLoopFoundOnAnAmbiguousDriveIsAnotherPlace) {
 
 // The same ambiguous drive's loop searches, allowed to blur the map by up to 10 %: those that do
 // are applied only when they close the loop (eq. 7) by more than half. The local search is 002's
-// (the heading's range fixed, no refinement below a cell) on 5 cm cells, so that it leaves loops
-// open enough to search and some searches' gains fall short (with 6 cm cells none does).
+// (the heading's range fixed, no refinement below a cell) on 5 cm cells, and revisits 10 cm off
+// are loops, so that it leaves loops open enough to search and some searches' gains fall short
+// (with 6 cm cells, or a 15 cm tolerance, none does).
 TEST(RssSlamAccuracyTest, ACorrectionThatBlursTheMapIsAppliedOnlyForTheMinimumEq7Gain) {
   const Dataset d = AmbiguousDrive();
   RssSlamParams params;
   UseFixedCube(params.local);
   params.local.refine.iterations = 0;
   params.local.resolution = 0.05;
+  params.loops.fit_tolerance = 0.1;
   params.generations = 10;
   params.sharpness_tolerance = 0.1;
   params.min_eq7_gain = 0.5;

@@ -229,7 +229,9 @@ TEST(LoopWeightTest, IsTheNormalisedInverseSpreadInTheEarlierFrame) {
 // A shift fits within the tolerances as the loop's weight measures it, so a loop that a search
 // closed across a corridor, and left open along it, does not fit any worse at the next check.
 TEST(FitsWhereItIsTest, MeasuresTheShiftThroughTheWeight) {
-  const LoopDetectionParams params;  // 0.1 m and 0.02 rad
+  LoopDetectionParams params;
+  params.fit_tolerance = 0.1;
+  params.fit_tolerance_theta = 0.02;
   const Eigen::Matrix2d same = Eigen::Matrix2d::Identity();
   EXPECT_TRUE(FitsWhereItIs(Pose2(0.06, -0.079, 0.02), 0.0, same, params));
   EXPECT_FALSE(FitsWhereItIs(Pose2(0.07, -0.08, 0.0), 0.0, same, params));
