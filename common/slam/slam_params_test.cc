@@ -49,7 +49,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   p.set_local_odometry_pull(0.0);
   p.set_local_turn_error_per_rad(0.0);
   p.set_local_carried_turn_error(0.0);
-  p.set_local_carried_turn_shift(0.5);
+  p.set_local_carried_turn_shift(0.0);
   p.set_local_refine_iterations(0);
   p.set_local_refine_max_shift_cells(1.5);
   p.set_local_refine_max_turn_rad(0.03);
@@ -75,7 +75,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   EXPECT_EQ(r.local.odometry_pull, 0.0);
   EXPECT_EQ(r.local.turn_error_per_rad, 0.0);
   EXPECT_EQ(r.local.carried_turn_error, 0.0);
-  EXPECT_EQ(r.local.carried_turn_shift, 0.5);
+  EXPECT_EQ(r.local.carried_turn_shift, 0.0);
   EXPECT_EQ(r.local.refine.iterations, 0u);
   EXPECT_EQ(r.local.refine.max_shift_cells, 1.5);
   EXPECT_EQ(r.local.refine.wall_share, 0.0);
