@@ -6,6 +6,7 @@
 #include "cli/commands.h"
 #include "cli/option_parsing.h"
 #include "common/mapping/line_map.h"
+#include "common/sim/route_file.h"
 #include "common/sim/simulator.h"
 #include "common/sim/world.h"
 #include "common/util/error.h"
@@ -14,7 +15,7 @@ namespace evoslam::cli {
 namespace {
 
 struct SimulateArgs {
-  std::string world = "s-corridor", world_file, out;
+  std::string world = "s-corridor", world_file, route_file, out;
   SimulationOptions options;
   bool no_odometry_noise = false;
 };
@@ -22,6 +23,7 @@ struct SimulateArgs {
 void Run(SimulateArgs a) {
   World world = a.world_file.empty() ? BuiltinWorld(a.world)
                                      : WorldFromLineMap(ReadLineMap(a.world_file), a.world_file);
+  if (!a.route_file.empty()) world.waypoints = ReadRoute(a.route_file);
   if (a.no_odometry_noise) a.options.noise.odometry = {0.0, 0.0, 0.0, 0.0};
   const Dataset log = Simulate(world, a.options);
   WriteSimulation(log, world, a.out);
@@ -42,6 +44,8 @@ void AddSimulateCommand(CLI::App& app) {
   cmd->add_option("--world-file", a->world_file,
                   "any LineMap file as world (a route through its free space is chosen)")
       ->excludes(world);
+  cmd->add_option("--route", a->route_file,
+                  "route file, one waypoint \"x y\" (m) per line, to drive instead of the world's");
   cmd->add_option("--beams", o.laser.beams, "laser beams")->check(CLI::Range(2, 100000));
   cmd->add_option("--fov", o.laser.field_of_view_deg, "field of view, degrees")
       ->check(CLI::Range(1.0, 360.0));

@@ -217,6 +217,37 @@ TEST_F(CliTest, BadFlagsAreRefused) {
   EXPECT_EQ(RunCli("--help").status, 0);
 }
 
+// --route drives the given waypoints instead of the world's route; a bad route file is named.
+TEST_F(CliTest, SimulateDrivesTheGivenRoute) {
+  std::ofstream(dir_ / "l.route") << "# an L\n2 2\n6 2\n6 4 # end\n";
+  const Result sim = RunCli("simulate --world empty-room --route " + Path("l.route") +
+                            " --seed 1 --out " + Path("sim"));
+  ASSERT_EQ(sim.status, 0) << sim.output;
+  const auto truth = evoslam::ReadTrajectory(dir_ / "sim" / "truth.txt");
+  ASSERT_GE(truth.size(), 2u);
+  EXPECT_NEAR(truth.front().pose.translation().x(), 2.0, 1e-9);
+  EXPECT_NEAR(truth.front().pose.translation().y(), 2.0, 1e-9);
+  EXPECT_NEAR(truth.back().pose.translation().x(), 6.0, 1e-9);
+  EXPECT_NEAR(truth.back().pose.translation().y(), 4.0, 1e-9);
+  for (const auto& p : truth) {
+    EXPECT_GE(p.pose.translation().x(), 2.0 - 1e-9);
+    EXPECT_LE(p.pose.translation().y(), 4.0 + 1e-9);
+  }
+
+  std::ofstream(dir_ / "bad.route") << "2 2\n6 two\n";
+  const Result bad =
+      RunCli("simulate --world empty-room --route " + Path("bad.route") + " --out " + Path("o"));
+  EXPECT_EQ(bad.status, 1);
+  EXPECT_NE(bad.output.find(Path("bad.route") + ":2: y is \"two\""), std::string::npos)
+      << bad.output;
+  std::ofstream(dir_ / "wall.route") << "2 2\n9 2\n";
+  const Result wall =
+      RunCli("simulate --world empty-room --route " + Path("wall.route") + " --out " + Path("o"));
+  EXPECT_EQ(wall.status, 1);
+  EXPECT_NE(wall.output.find("must keep 0.5 m"), std::string::npos) << wall.output;
+  EXPECT_FALSE(fs::exists(dir_ / "o"));
+}
+
 // slam refuses a bad command line with 2, naming the flag, before it simulates or reads anything.
 TEST_F(CliTest, SlamRefusesBadFlags) {
   const std::string slam = "slam --out " + Path("o");

@@ -40,6 +40,11 @@ void SplitFields(std::string_view line, std::vector<std::string_view>* fields) {
   }
 }
 
+std::string_view StripHashComment(std::string_view line) {
+  const std::size_t hash = line.find('#');
+  return hash == std::string_view::npos ? line : line.substr(0, hash);
+}
+
 std::optional<double> ParseDouble(std::string_view text) { return ParseWhole<double>(text); }
 
 std::optional<float> ParseFloat(std::string_view text) { return ParseWhole<float>(text); }

@@ -13,6 +13,10 @@ namespace evoslam {
 // *fields is cleared first so that a caller can reuse its capacity from line to line.
 void SplitFields(std::string_view line, std::vector<std::string_view>* fields);
 
+// The part of line before its first '#': the comment rule of evoslam's own text formats (line
+// maps, routes). YAML's rule differs ('#' only after whitespace, outside quotes).
+std::string_view StripHashComment(std::string_view line);
+
 // Parse the whole of text as a number, locale-independently; nullopt when text is not exactly
 // one number (empty, trailing characters, out of range). A leading '+' is accepted. ParseDouble
 // and ParseFloat accept "nan" and "inf": callers that need finite values must check.

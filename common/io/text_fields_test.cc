@@ -18,6 +18,12 @@ TEST(TextFieldsTest, SplitsOnRunsOfSpacesAndTabs) {
   EXPECT_TRUE(fields.empty());
 }
 
+TEST(TextFieldsTest, StripsFromTheFirstHash) {
+  EXPECT_EQ(StripHashComment("1 2 # a # b"), "1 2 ");
+  EXPECT_EQ(StripHashComment("#all"), "");
+  EXPECT_EQ(StripHashComment("no comment"), "no comment");
+}
+
 TEST(TextFieldsTest, ParsesWholeNumbersOnly) {
   EXPECT_EQ(ParseDouble("976052905.167303"), 976052905.167303);
   EXPECT_EQ(ParseDouble("-1.5e-3"), -1.5e-3);

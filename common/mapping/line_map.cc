@@ -56,11 +56,6 @@ int CellIndex(double coordinate, double origin, double inv_cell_size, int count)
   return static_cast<int>(cell);
 }
 
-std::string_view StripComment(std::string_view line) {
-  const std::size_t hash = line.find('#');
-  return hash == std::string_view::npos ? line : line.substr(0, hash);
-}
-
 }  // namespace
 
 LineMap::LineMap(std::vector<Segment> segments, double cell_size)
@@ -265,7 +260,7 @@ LineMap ReadLineMap(const std::filesystem::path& path) {
   std::size_t line_number = 0;
   while (std::getline(in, line)) {
     ++line_number;
-    SplitFields(StripComment(line), &fields);
+    SplitFields(StripHashComment(line), &fields);
     if (fields.empty()) continue;
     if (fields.size() != 4) {
       throw InputError(source, line_number,
