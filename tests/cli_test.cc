@@ -267,6 +267,7 @@ TEST_F(CliTest, SlamRefusesBadFlags) {
            {"--param sigma=0.1,0.2", "sigma"},
            {"--param log=x", "--log"},
            {"--min-match-score 0", "match score"},
+           {"--param local_min_constraint_ratio=1", "minimum constraint ratio"},
            {"--detach", "--coordinator"},
        }) {
     const Result r = RunCli(slam + " " + flag);

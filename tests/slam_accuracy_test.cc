@@ -172,7 +172,10 @@ void UseFixedCube(LocalSearchParams& local) {
 }
 
 // With a 4 m laser the office cluster's hallway and look-alike offices match well in many
-// places, and the local search drifts enough for revisits not to fit.
+// places, and the local search drifts enough for revisits not to fit. The tests on it take the
+// local search that keeps no prediction where the scan fixes nothing (local_min_constraint_ratio
+// 0), which drifts more along the hallway: with the default, the whole run ends at 0.21 against
+// 0.30 m, and one loop found is matched 0.50 m off along the hallway (docs/accuracy.md).
 Dataset AmbiguousDrive() {
   SimulationOptions sim;
   sim.laser.beams = 181;
@@ -186,6 +189,7 @@ Dataset AmbiguousDrive() {
 TEST(LoopDetectionAccuracyTest, NoLoopFoundOnAnAmbiguousDriveIsAnotherPlace) {
   const Dataset d = AmbiguousDrive();
   RssSlamParams params;
+  params.local.min_constraint_ratio = 0.0;
   params.generations = 10;
   const RssSlamResult slam = RunRssSlam(d, params, 1);
   EXPECT_GE(slam.loops.size(), 2u);
@@ -200,14 +204,16 @@ TEST(LoopDetectionAccuracyTest, NoLoopFoundOnAnAmbiguousDriveIsAnotherPlace) {
 
 // The same ambiguous drive's loop searches, allowed to blur the map by up to 10 %: those that do
 // are applied only when they close the loop (eq. 7) by more than half. The local search is 002's
-// (the heading's range fixed, no refinement below a cell) on 5 cm cells, and revisits 10 cm off
-// are loops, so that it leaves loops open enough to search and some searches' gains fall short
-// (with 6 cm cells, or a 15 cm tolerance, none does).
+// (the heading's range fixed, no refinement below a cell, no prediction kept where the scan fixes
+// nothing) on 5 cm cells, and revisits 10 cm off are loops, so that it leaves loops open enough
+// to search and some searches' gains fall short (with 6 cm cells, or a 15 cm tolerance, none
+// does).
 TEST(RssSlamAccuracyTest, ACorrectionThatBlursTheMapIsAppliedOnlyForTheMinimumEq7Gain) {
   const Dataset d = AmbiguousDrive();
   RssSlamParams params;
   UseFixedCube(params.local);
   params.local.refine.iterations = 0;
+  params.local.min_constraint_ratio = 0.0;
   params.local.resolution = 0.05;
   params.loops.fit_tolerance = 0.1;
   params.generations = 10;

@@ -50,6 +50,8 @@ void ValidateLocalSearchParams(const LocalSearchParams& p) {
   if (!(p.margin >= 0.0)) throw Error("local search: the map margin must not be negative");
   if (!(p.odometry_pull >= 0.0 && p.odometry_pull < 1.0))
     throw Error("local search: the odometry pull must be in [0, 1)");
+  if (!(p.min_constraint_ratio >= 0.0 && p.min_constraint_ratio < 1.0))
+    throw Error("local search: the minimum constraint ratio must be in [0, 1)");
   if (!std::isfinite(p.frontier_margin))
     throw Error("local search: the frontier margin must be finite");
   ValidateScanRefinementParams(p.refine);
@@ -130,8 +132,15 @@ StepCorrection CorrectStep(const HitCountGrid& map, const LaserScan& scan, const
     result.pose = problem.Corrected(r.best);
     if (!OnFace(r.best, params.max_error)) break;
   }
+  if (params.refine.iterations == 0 && params.min_constraint_ratio == 0.0) return result;
+  const std::vector<Eigen::Vector2d> returns = ReturnPoints(scan);
   if (params.refine.iterations > 0) {
-    result.pose = RefineScanPose(map, ReturnPoints(scan), result.pose, params.refine);
+    result.pose = RefineScanPose(map, returns, result.pose, params.refine);
+  }
+  if (params.min_constraint_ratio > 0.0) {
+    result.pose =
+        KeepPriorWhereUnconstrained(map, returns, result.pose, predicted,
+                                    params.min_constraint_ratio, params.refine.wall_share);
   }
   return result;
 }

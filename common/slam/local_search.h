@@ -71,6 +71,12 @@ struct LocalSearchParams {
   // one cell better always wins, and eq. 1's counts rank alike for every value in (0, 1).
   // 0: none, as in 002 (docs/rss_slam.md).
   double odometry_pull = 0.5;
+  // Down a featureless corridor longer than the laser's reach nothing in the scan fixes the step
+  // along the corridor, and however the ties are broken the pick drifts: the finished step keeps
+  // the prediction's value along every direction whose information is below this share of the
+  // best-constrained direction's (KeepPriorWhereUnconstrained). Our addition; 0: none, as in 002
+  // (docs/rss_slam.md).
+  double min_constraint_ratio = 0.005;
   // After the PSO, the step's pose is aligned to the map below a cell (our addition; 002 has
   // none). iterations = 0 leaves the PSO's pose, as in 002.
   ScanRefinementParams refine;

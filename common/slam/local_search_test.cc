@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -252,6 +253,43 @@ TEST(LocalSearchTest, DownAHallLongerThanTheLasersReachTheFrontierDoesNotPullThe
   // wanders; the odometry pull keeps such steps where odometry puts them (0.06 against 0.2 m).
   const double unpulled = shortfall(LocalSearchParams{}.frontier_margin, 0.0);
   EXPECT_LT(std::abs(within), 0.75 * unpulled) << "without the pull: " << unpulled << " m short";
+}
+
+// A hall with nothing on its walls, longer than the laser's reach: each scan fixes its step
+// across the hall and its heading, and nothing along it. Odometry that over-reads by 2 % is the
+// only measure along the hall. Keeping the prediction there, a search ends about as far off as
+// odometry; taking the swarm's pick, which eq. 1's pull back into the mapped part of the walls
+// biases, it slides short by more than odometry's error.
+TEST(LocalSearchTest, DownAFeaturelessHallTheStepKeepsThePredictionAlongIt) {
+  const LineMap hall(
+      std::vector<Segment>{{{-2.0, -1.0}, {60.0, -1.0}}, {{-2.0, 1.0}, {60.0, 1.0}}});
+  constexpr int kScans = 200;
+  constexpr double kStep = 0.2;
+  Dataset drive;
+  for (int i = 0; i < kScans; ++i) {
+    const Pose2 pose(kStep * i, 0.0, 0.0);
+    LaserScan scan = testing::ScanFrom(hall, pose, 361, 4.0);
+    scan.timestamp = i;
+    scan.odometry = Pose2(1.02 * pose.x(), 0.0, 0.0);
+    drive.scans.push_back(std::move(scan));
+  }
+  const double end = kStep * (kScans - 1);
+  const double odometry_error = drive.scans.back().odometry.x() - end;
+  const auto end_error = [&](double min_constraint_ratio, std::uint64_t seed) {
+    LocalSearchParams params;
+    params.min_constraint_ratio = min_constraint_ratio;
+    HitCountGrid map = EmptyMapFor(drive, params);
+    return RunLocalSearch(drive, params, seed, map).trajectory.back().pose.x() - end;
+  };
+  double worst_kept = 0.0, worst_picked = 0.0;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    worst_kept =
+        std::max(worst_kept, std::abs(end_error(LocalSearchParams{}.min_constraint_ratio, seed)));
+    worst_picked = std::max(worst_picked, std::abs(end_error(0.0, seed)));
+  }
+  EXPECT_LT(worst_kept, odometry_error + 0.1) << "odometry " << odometry_error << " m off";
+  EXPECT_GT(worst_picked, odometry_error + 0.3)
+      << "the swarm's pick did not slide: the hall shows nothing";
 }
 
 TEST(WithinPreviousReachTest, DropsTheReturnsBeyondThePreviousScansReach) {

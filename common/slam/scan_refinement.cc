@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 
 #include "common/transform/pose2_frame.h"
 #include "common/util/error.h"
@@ -53,6 +54,16 @@ double StrongestCount(const HitCountGrid& map, int x, int y) {
   return strongest;
 }
 
+// Multiplies (x, y, heading) so that all three measure how far the returns' end points move: the
+// heading by the returns' mean range. The normal matrix's eigenvalues then compare. nullopt
+// without returns.
+std::optional<Eigen::Vector3d> CoordinateScale(std::span<const Eigen::Vector2d> returns) {
+  double range = 0.0;
+  for (const Eigen::Vector2d& p : returns) range += p.norm();
+  if (returns.empty() || !(range > 0.0)) return std::nullopt;
+  return Eigen::Vector3d(1.0, 1.0, static_cast<double>(returns.size()) / range);
+}
+
 }  // namespace
 
 void ValidateScanRefinementParams(const ScanRefinementParams& p) {
@@ -98,16 +109,12 @@ Pose2 RefineScanPose(const HitCountGrid& map, std::span<const Eigen::Vector2d> r
   const auto moved = [&start](const Eigen::Vector3d& d) {
     return Pose2(start.x() + d.x(), start.y() + d.y(), start.theta() + d.z());
   };
-  // The heading is scaled by the returns' mean range, so that all three coordinates measure how
-  // far the end points move and the normal matrix's eigenvalues compare.
-  double range = 0.0;
-  for (const Eigen::Vector2d& p : returns) range += p.norm();
-  if (returns.empty() || !(range > 0.0)) return start;
-  const Eigen::Vector3d scale(1.0, 1.0, static_cast<double>(returns.size()) / range);
+  const std::optional<Eigen::Vector3d> scale = CoordinateScale(returns);
+  if (!scale) return start;
   const double max_shift = params.max_shift_cells * map.resolution();
   Normal at = NormalEquations(map, returns, start, params.wall_share);
   for (std::size_t it = 0; it < params.iterations; ++it) {
-    const Eigen::Matrix3d h = scale.asDiagonal() * at.h * scale.asDiagonal();
+    const Eigen::Matrix3d h = scale->asDiagonal() * at.h * scale->asDiagonal();
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(h);
     if (eigen.info() != Eigen::Success) break;
     const Eigen::Vector3d& values = eigen.eigenvalues();  // ascending
@@ -115,13 +122,13 @@ Pose2 RefineScanPose(const HitCountGrid& map, std::span<const Eigen::Vector2d> r
     // The step solves the normal equations in the directions the returns constrain; along one
     // they do not (two parallel walls and nothing else), it stays 0 rather than divide by 0.
     Eigen::Vector3d step = Eigen::Vector3d::Zero();
-    const Eigen::Vector3d g = scale.asDiagonal() * at.g;
+    const Eigen::Vector3d g = scale->asDiagonal() * at.g;
     for (int k = 0; k < 3; ++k) {
       if (values(k) > kUnconstrained * values(2)) {
         step += eigen.eigenvectors().col(k) * (eigen.eigenvectors().col(k).dot(g) / values(k));
       }
     }
-    Eigen::Vector3d next = offset + scale.asDiagonal() * step;
+    Eigen::Vector3d next = offset + scale->asDiagonal() * step;
     if (!next.allFinite()) break;
     const double shift = next.head<2>().norm();
     if (shift > max_shift) next.head<2>() *= max_shift / shift;
@@ -132,6 +139,34 @@ Pose2 RefineScanPose(const HitCountGrid& map, std::span<const Eigen::Vector2d> r
     at = there;
   }
   return moved(offset);
+}
+
+Pose2 KeepPriorWhereUnconstrained(const HitCountGrid& map, std::span<const Eigen::Vector2d> returns,
+                                  const Pose2& pose, const Pose2& prior, double min_ratio,
+                                  double wall_share) {
+  const std::optional<Eigen::Vector3d> scale = CoordinateScale(returns);
+  if (!(min_ratio > 0.0) || !scale) return pose;
+  const Normal at = NormalEquations(map, returns, pose, wall_share);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(scale->asDiagonal() * at.h *
+                                                             scale->asDiagonal());
+  if (eigen.info() != Eigen::Success) return pose;
+  const Eigen::Vector3d& values = eigen.eigenvalues();  // ascending
+  if (!(values(2) > 0.0)) return prior;
+  // Every direction constrained: the pose as it is, not rebuilt through the eigenvectors.
+  if (values(0) >= min_ratio * values(2)) return pose;
+  // The offset in the scaled coordinates the eigenvectors live in, projected onto the constrained
+  // ones (the ascending eigenvalues put the unconstrained first).
+  const Eigen::Vector3d offset = scale->cwiseInverse().asDiagonal() *
+                                 Eigen::Vector3d(pose.x() - prior.x(), pose.y() - prior.y(),
+                                                 WrapAngle(pose.theta() - prior.theta()));
+  Eigen::Vector3d kept = Eigen::Vector3d::Zero();
+  for (int k = 1; k < 3; ++k) {
+    if (values(k) >= min_ratio * values(2)) {
+      kept += eigen.eigenvectors().col(k) * eigen.eigenvectors().col(k).dot(offset);
+    }
+  }
+  kept = scale->asDiagonal() * kept;
+  return Pose2(prior.x() + kept.x(), prior.y() + kept.y(), prior.theta() + kept.z());
 }
 
 }  // namespace evoslam

@@ -50,6 +50,16 @@ std::optional<OccupancySample> SampleOccupancy(const HitCountGrid& map,
 Pose2 RefineScanPose(const HitCountGrid& map, std::span<const Eigen::Vector2d> returns,
                      const Pose2& start, const ScanRefinementParams& params);
 
+// `pose` with its offset from `prior` kept only along the directions the returns constrain: along
+// a direction whose information (an eigenvalue of the refinement's normal matrix at `pose`, the
+// heading measured by the returns' mean range) is below `min_ratio` times the best-constrained
+// direction's, the prior's value is taken. Down a featureless corridor longer than the laser's
+// reach the scan fixes nothing along the corridor, and a search's pick there is noise. Returns
+// `pose` for min_ratio <= 0 or no returns, and `prior` where the map constrains nothing at all.
+Pose2 KeepPriorWhereUnconstrained(const HitCountGrid& map, std::span<const Eigen::Vector2d> returns,
+                                  const Pose2& pose, const Pose2& prior, double min_ratio,
+                                  double wall_share);
+
 }  // namespace evoslam
 
 #endif  // EVOSLAM_COMMON_SLAM_SCAN_REFINEMENT_H_

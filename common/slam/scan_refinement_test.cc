@@ -26,6 +26,23 @@ HitCountGrid RoomMap() {
   return map;
 }
 
+// Two long parallel walls, each at the centre of a row of 5 cm cells, and a map of them in which
+// each wall fills its row once.
+constexpr double kCorridorWall = 1.025;
+LineMap Corridor() {
+  return LineMap(std::vector<Segment>{{{-20.0, -kCorridorWall}, {20.0, -kCorridorWall}},
+                                      {{-20.0, kCorridorWall}, {20.0, kCorridorWall}}});
+}
+HitCountGrid CorridorMap() {
+  HitCountGrid map(0.05, Eigen::Vector2d(-5.0, -3.0), 200, 120);
+  for (int x = 0; x < map.width(); ++x) {
+    for (const double y : {-kCorridorWall, kCorridorWall}) {
+      map.Add(Eigen::Vector2d(-4.975 + 0.05 * x, y));
+    }
+  }
+  return map;
+}
+
 double Distance(const Pose2& a, const Pose2& b) {
   return (a.translation() - b.translation()).norm();
 }
@@ -151,16 +168,11 @@ TEST(RefineScanPoseTest, AHeadingNearPiDoesNotWrapIntoTheLimit) {
   EXPECT_LT(std::abs(WrapAngle(refined.theta() - truth.theta())), 0.005);
 }
 
-// Two long parallel walls, each filling a row of cells, and a laser too short to see an end: the
-// scan fixes the pose across the corridor and its heading, and nothing along it.
+// The corridor and a laser too short to see an end: the scan fixes the pose across the corridor
+// and its heading, and nothing along it.
 TEST(RefineScanPoseTest, AlongACorridorThePoseKeepsItsPlace) {
-  constexpr double kWall = 1.025;  // the centre of a row of cells
-  const LineMap corridor(
-      std::vector<Segment>{{{-20.0, -kWall}, {20.0, -kWall}}, {{-20.0, kWall}, {20.0, kWall}}});
-  HitCountGrid map(0.05, Eigen::Vector2d(-5.0, -3.0), 200, 120);
-  for (int x = 0; x < map.width(); ++x) {
-    for (const double y : {-kWall, kWall}) map.Add(Eigen::Vector2d(-4.975 + 0.05 * x, y));
-  }
+  const LineMap corridor = Corridor();
+  const HitCountGrid map = CorridorMap();
   const Pose2 truth(0.3, 0.0, 0.0);
   const std::vector<Eigen::Vector2d> returns =
       ReturnPoints(testing::ScanFrom(corridor, truth, 181, 4.0));
@@ -176,12 +188,10 @@ TEST(RefineScanPoseTest, AlongACorridorThePoseKeepsItsPlace) {
 // off by 2 cm across the corridor has nothing to follow; against the strongest count, each wall
 // peaks along its middle and the refinement finds it.
 TEST(RefineScanPoseTest, AcrossAThickWallThePoseFollowsTheCountsToItsMiddle) {
-  constexpr double kWall = 1.025;
-  const LineMap corridor(
-      std::vector<Segment>{{{-20.0, -kWall}, {20.0, -kWall}}, {{-20.0, kWall}, {20.0, kWall}}});
+  const LineMap corridor = Corridor();
   HitCountGrid map(0.05, Eigen::Vector2d(-5.0, -3.0), 200, 120);
   for (int x = 0; x < map.width(); ++x) {
-    for (const double y : {-kWall, kWall}) {
+    for (const double y : {-kCorridorWall, kCorridorWall}) {
       const Eigen::Vector2d centre(-4.975 + 0.05 * x, y);
       map.Add(centre, 10);
       map.Add(centre + Eigen::Vector2d(0.0, 0.05), 1);
@@ -197,6 +207,40 @@ TEST(RefineScanPoseTest, AcrossAThickWallThePoseFollowsTheCountsToItsMiddle) {
   EXPECT_LT(std::abs(refined.y() - truth.y()), 0.002) << refined;
   params.wall_share = 0.0;
   EXPECT_EQ(RefineScanPose(map, returns, start, params), start);
+}
+
+// The corridor of AlongACorridorThePoseKeepsItsPlace: a pose off its prior both ways keeps the
+// offset across the corridor and in heading, which the scan measures, and takes the prior's
+// place along it, which the scan cannot measure.
+TEST(KeepPriorWhereUnconstrainedTest, AlongACorridorThePriorsPlaceIsTaken) {
+  const LineMap corridor = Corridor();
+  const HitCountGrid map = CorridorMap();
+  const Pose2 pose(0.45, 0.02, 0.004);
+  const Pose2 prior(0.3, 0.0, 0.0);
+  const std::vector<Eigen::Vector2d> returns =
+      ReturnPoints(testing::ScanFrom(corridor, pose, 181, 4.0));
+  const Pose2 kept = KeepPriorWhereUnconstrained(map, returns, pose, prior, 0.005, 0.3);
+  EXPECT_NEAR(kept.x(), prior.x(), 1e-6) << kept;
+  EXPECT_NEAR(kept.y(), pose.y(), 1e-6) << kept;
+  EXPECT_NEAR(kept.theta(), pose.theta(), 1e-6) << kept;
+  EXPECT_EQ(KeepPriorWhereUnconstrained(map, returns, pose, prior, 0.0, 0.3), pose);
+  EXPECT_EQ(KeepPriorWhereUnconstrained(map, {}, pose, prior, 0.005, 0.3), pose);
+}
+
+// In a room every direction is pinned down: the pose stays. On a map with nothing on it, no
+// direction is: the prior is taken.
+TEST(KeepPriorWhereUnconstrainedTest, InARoomThePoseStaysOnABlankMapThePriorIsTaken) {
+  const HitCountGrid map = RoomMap();
+  const Pose2 pose(3.1, 2.5, 0.8);
+  const Pose2 prior = pose * Pose2(0.1, -0.05, 0.03);
+  const std::vector<Eigen::Vector2d> returns =
+      ReturnPoints(testing::ScanFrom(testing::BoxRoom(), pose));
+  const Pose2 kept = KeepPriorWhereUnconstrained(map, returns, pose, prior, 0.005, 0.3);
+  EXPECT_NEAR(kept.x(), pose.x(), 1e-9);
+  EXPECT_NEAR(kept.y(), pose.y(), 1e-9);
+  EXPECT_NEAR(kept.theta(), pose.theta(), 1e-9);
+  const HitCountGrid blank(0.05, Eigen::Vector2d(-1.0, -1.0), 180, 200);
+  EXPECT_EQ(KeepPriorWhereUnconstrained(blank, returns, pose, prior, 0.005, 0.3), prior);
 }
 
 TEST(ScanRefinementParamsTest, RejectsLimitsThatAreNegativeOrNotFinite) {
