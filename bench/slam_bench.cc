@@ -129,20 +129,30 @@ BENCHMARK(BM_PlaceMatcherSearch)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
-// The local search over the first 2000 scans of the Intel log, on OMP_NUM_THREADS threads.
-void BM_LocalSearchIntel(benchmark::State& state) {
+// The local search with `params` over the first 2000 scans of the Intel log, on OMP_NUM_THREADS
+// threads.
+void LocalSearchIntel(benchmark::State& state, const LocalSearchParams& params) {
   const Dataset* log = IntelOrSkip(state);
   if (!log) return;
   Dataset first = *log;
   first.scans.resize(2000);
-  const LocalSearchParams params;
   for (auto _ : state) {
     HitCountGrid map = EmptyMapFor(first, params);
     benchmark::DoNotOptimize(RunLocalSearch(first, params, 1, map));
   }
   state.counters["scans"] = static_cast<double>(first.scans.size());
 }
+
+void BM_LocalSearchIntel(benchmark::State& state) { LocalSearchIntel(state, LocalSearchParams{}); }
 BENCHMARK(BM_LocalSearchIntel)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+// The same with the seen space's edge left free: the map also traces every beam.
+void BM_LocalSearchIntelEdgeFree(benchmark::State& state) {
+  LocalSearchParams params;
+  params.free_frontier = true;
+  LocalSearchIntel(state, params);
+}
+BENCHMARK(BM_LocalSearchIntelEdgeFree)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 // The whole of 002's algorithm over the first range(0) scans of the Intel log (0: all 13,631),
 // on OMP_NUM_THREADS threads. Its speed against the log's own pace is the "x real time" counter.

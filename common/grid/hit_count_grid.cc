@@ -92,12 +92,77 @@ std::size_t HitCountGrid::AddScan(const LaserScan& scan, const Pose2& pose, int 
   std::size_t outside = 0;
   const Pose2Frame frame(pose);
   for (const Eigen::Vector2d& p : ReturnPoints(scan)) outside += !Add(frame * p, delta);
+  if (tracks_rays() && delta != 0) {
+    for (std::size_t i = 0; i < scan.size(); ++i) {
+      const double r = scan.ranges[i];
+      // A return's ray ends at it; a beam that returned nothing crossed free space to the range.
+      const double reach = scan.is_return(i) ? r : (r >= scan.range_max ? scan.range_max : 0.0);
+      if (!(reach > 0.0)) continue;
+      const double a = scan.angle(i);
+      AddCrossings(pose.translation(),
+                   frame * Eigen::Vector2d(reach * std::cos(a), reach * std::sin(a)), delta);
+    }
+  }
   return outside;
+}
+
+void HitCountGrid::TrackRays() {
+  crossings_.assign(counts_.size(), 0);
+  crossed_bits_.assign(occupied_bits_.size(), 0);
+}
+
+void HitCountGrid::AddCrossings(const Eigen::Vector2d& from, const Eigen::Vector2d& to, int delta) {
+  // Amanatides and Woo's traversal: from cell to cell across the nearer boundary.
+  const Eigen::Vector2d a = (from - origin_) / resolution_, b = (to - origin_) / resolution_;
+  if (!(a.x() >= 0 && a.y() >= 0 && a.x() < width_ && a.y() < height_) || !b.allFinite()) return;
+  int x = static_cast<int>(a.x()), y = static_cast<int>(a.y());
+  const int end_x = static_cast<int>(std::floor(b.x())),
+            end_y = static_cast<int>(std::floor(b.y()));
+  const Eigen::Vector2d d = b - a;
+  const int step_x = d.x() > 0 ? 1 : -1, step_y = d.y() > 0 ? 1 : -1;
+  constexpr double kNever = std::numeric_limits<double>::infinity();
+  const double delta_x = d.x() != 0.0 ? std::abs(1.0 / d.x()) : kNever;
+  const double delta_y = d.y() != 0.0 ? std::abs(1.0 / d.y()) : kNever;
+  double next_x = d.x() != 0.0 ? ((d.x() > 0 ? x + 1 - a.x() : a.x() - x) * delta_x) : kNever;
+  double next_y = d.y() != 0.0 ? ((d.y() > 0 ? y + 1 - a.y() : a.y() - y) * delta_y) : kNever;
+  while (x != end_x || y != end_y) {
+    const std::size_t i = Index(x, y);
+    std::uint32_t& c = crossings_[i];
+    const std::uint32_t before = c;
+    if (delta >= 0) {
+      c += static_cast<std::uint32_t>(delta);
+    } else {
+      c -= std::min(c, static_cast<std::uint32_t>(-static_cast<long long>(delta)));
+    }
+    if ((before > 0) != (c > 0)) crossed_bits_[i / 64] ^= std::uint64_t{1} << (i % 64);
+    if (next_x < next_y) {
+      if (next_x > 1.0) break;
+      x += step_x;
+      next_x += delta_x;
+    } else {
+      if (next_y > 1.0) break;
+      y += step_y;
+      next_y += delta_y;
+    }
+    if (x < 0 || y < 0 || x >= width_ || y >= height_) break;
+  }
+}
+
+bool HitCountGrid::Frontier(std::size_t index) const {
+  if (crossed_bits_.empty() || crossed(index) || occupied(index)) return false;
+  const auto w = static_cast<std::size_t>(width_);
+  const std::size_t x = index % w, y = index / w;
+  if (x == 0 || y == 0 || x + 1 >= w || y + 1 >= static_cast<std::size_t>(height_)) return false;
+  for (const std::size_t n : {index - w - 1, index - w, index - w + 1, index - 1, index + 1,
+                              index + w - 1, index + w, index + w + 1}) {
+    if (crossed(n) && !occupied(n)) return true;
+  }
+  return false;
 }
 
 template <typename Cells>
 void HitCountGrid::CountInsertion(const Pose2Frame& frame, std::span<const Eigen::Vector2d> points,
-                                  Cells& cells, Insertion& sums) const {
+                                  Cells& cells, Insertion& sums, bool frontier_free) const {
   // frame * p, and its cell as CellIndex finds it, to the bit.
   const Pose2& pose = frame.pose();
   const double c = frame.cos(), s = frame.sin();
@@ -134,6 +199,13 @@ void HitCountGrid::CountInsertion(const Pose2Frame& frame, std::span<const Eigen
         n += in;
       }
     }
+    if (frontier_free) {
+      for (std::size_t k = 0; k < n; ++k) {
+        const bool added = cells.Insert(chunk_cells[k]) && !occupied(chunk_cells[k]);
+        fresh += static_cast<std::uint64_t>(added && !Frontier(chunk_cells[k]));
+      }
+      continue;
+    }
     for (std::size_t k = 0; k < n; ++k) {
       // Without a branch on whether the cell is new: that one mispredicts.
       fresh += static_cast<std::uint64_t>(cells.Insert(chunk_cells[k])) &
@@ -145,9 +217,9 @@ void HitCountGrid::CountInsertion(const Pose2Frame& frame, std::span<const Eigen
 }
 
 template void HitCountGrid::CountInsertion(const Pose2Frame&, std::span<const Eigen::Vector2d>,
-                                           CellSet&, Insertion&) const;
+                                           CellSet&, Insertion&, bool) const;
 template void HitCountGrid::CountInsertion(const Pose2Frame&, std::span<const Eigen::Vector2d>,
-                                           GridCellSet&, Insertion&) const;
+                                           GridCellSet&, Insertion&, bool) const;
 
 double HitCountGrid::MeanPerOccupied() const {
   return occupied_ > 0 ? static_cast<double>(total_) / static_cast<double>(occupied_) : 0.0;

@@ -136,6 +136,25 @@ class HitCountGrid {
     return (occupied_bits_[index / 64] >> (index % 64)) & 1;
   }
 
+  // Ray coverage, our addition to 002's map. Once on, AddScan also counts, in every cell a beam
+  // crosses on its way to its return (or to the laser's range where it returns nothing), the
+  // rays that crossed it, and takes them back with the scan, so that the coverage, like the
+  // counts, is that of the scans at the poses they were last added at. Turn it on before adding
+  // scans; it costs four bytes and a bit per cell.
+  void TrackRays();
+  bool tracks_rays() const { return !crossings_.empty(); }
+  // Whether a ray crosses a cell, by its index (which must lie in the grid); false without ray
+  // coverage.
+  bool crossed(std::size_t index) const {
+    return !crossed_bits_.empty() && ((crossed_bits_[index / 64] >> (index % 64)) & 1);
+  }
+  // A cell on the edge of what the rays have seen: neither crossed nor occupied, and next to a
+  // cell that is crossed and not occupied (of its eight neighbours). Such are the first cells of
+  // a wall a corner hid from the scans so far, or of one just past the laser's reach, and the
+  // gaps grazing beams leave between their hits along a wall. False without ray coverage, and
+  // on the grid's border.
+  bool Frontier(std::size_t index) const;
+
   // Adds `delta` observations at a world point (a negative delta takes them back; a count never
   // goes below zero). Returns false, changing nothing, for a point outside the grid.
   bool Add(const Eigen::Vector2d& point, int delta = 1);
@@ -151,9 +170,11 @@ class HitCountGrid {
     std::uint64_t inside = 0;
     std::uint64_t fresh = 0;
   };
+  // With `frontier_free`, a point on a Frontier cell makes no cell occupied: nothing the rays
+  // saw says there is no obstacle there.
   template <typename Cells>
   void CountInsertion(const Pose2Frame& frame, std::span<const Eigen::Vector2d> points,
-                      Cells& cells, Insertion& sums) const;
+                      Cells& cells, Insertion& sums, bool frontier_free = false) const;
 
   std::uint64_t total() const { return total_; }        // the sum of all counts
   std::uint64_t occupied() const { return occupied_; }  // cells whose count is above zero
@@ -181,6 +202,13 @@ class HitCountGrid {
   // A bit per cell, set while its count is above zero: what scoring an insertion asks of every
   // cell, in a 32nd of the memory, so that it stays in cache.
   std::vector<std::uint64_t> occupied_bits_;
+  // Once TrackRays is on: the rays crossing each cell, and a bit per cell set while that is above
+  // zero (read for every return the local search scores).
+  std::vector<std::uint32_t> crossings_;
+  std::vector<std::uint64_t> crossed_bits_;
+  // Adds `delta` to the crossings of the cells a ray from `from` to `to` crosses, the cell of
+  // `to` left out.
+  void AddCrossings(const Eigen::Vector2d& from, const Eigen::Vector2d& to, int delta);
   std::uint64_t total_ = 0;
   std::uint64_t occupied_ = 0;
 };

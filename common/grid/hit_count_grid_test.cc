@@ -99,6 +99,65 @@ TEST(HitCountGridTest, AScanAddsItsReturnsWhereTheyEndAndTakesThemBackExactly) {
   EXPECT_EQ(grid.AddScan(scan, Pose2(4.0, 0.0, 0.0)), 1u);  // one end point beyond the grid
 }
 
+// One beam along world +x from (0.51, 0.51) to a wall at x = 1.51, one along +y that returns
+// nothing within the laser's 1.2 m: the cells each ray crosses, and the edge of them.
+TEST(HitCountGridTest, TrackedRaysMarkTheCellsTheyCrossAndLeaveTheEdgeFree) {
+  HitCountGrid grid(0.1, Eigen::Vector2d(0.0, 0.0), 40, 40);
+  LaserScan scan;
+  scan.angle_min = 0.0;
+  scan.angle_increment = std::numbers::pi / 2;
+  scan.range_min = 0.1;
+  scan.range_max = 1.2;
+  scan.ranges = {1.0, 1.2};  // the second is no return
+  const Pose2 pose(0.51, 0.51, 0.0);
+  const auto index = [&](double x, double y) { return *grid.CellIndex({x, y}); };
+
+  grid.AddScan(scan, pose);  // without ray tracking nothing is crossed, nothing is an edge
+  EXPECT_FALSE(grid.tracks_rays());
+  EXPECT_FALSE(grid.crossed(index(1.05, 0.55)));
+  EXPECT_FALSE(grid.Frontier(index(1.05, 0.65)));
+
+  HitCountGrid tracked(0.1, Eigen::Vector2d(0.0, 0.0), 40, 40);
+  tracked.TrackRays();
+  tracked.AddScan(scan, pose);
+  for (double x = 0.55; x < 1.5; x += 0.1) EXPECT_TRUE(tracked.crossed(index(x, 0.55))) << x;
+  EXPECT_FALSE(tracked.crossed(index(1.55, 0.55)));  // the wall's cell: hit, not crossed
+  EXPECT_TRUE(tracked.occupied(index(1.55, 0.55)));
+  for (double y = 0.55; y < 1.7; y += 0.1) EXPECT_TRUE(tracked.crossed(index(0.55, y))) << y;
+  EXPECT_FALSE(tracked.crossed(index(0.55, 1.75)));  // where the range ends
+  EXPECT_FALSE(tracked.crossed(index(1.05, 1.05)));
+
+  // Beside a crossed cell and not seen: the edge. Behind the wall, or away from every ray: not.
+  EXPECT_TRUE(tracked.Frontier(index(1.05, 0.65)));
+  EXPECT_TRUE(tracked.Frontier(index(0.55, 1.75)));
+  EXPECT_FALSE(tracked.Frontier(index(1.65, 0.55)));
+  EXPECT_FALSE(tracked.Frontier(index(1.05, 1.05)));
+  EXPECT_FALSE(tracked.Frontier(index(1.05, 0.55)));  // crossed
+  EXPECT_FALSE(tracked.Frontier(index(1.55, 0.55)));  // occupied
+
+  // A point on the edge makes no cell occupied when the edge is free, one when it is not.
+  CellSet cells;
+  HitCountGrid::Insertion counted, free;
+  const std::vector<Eigen::Vector2d> edge{{1.05, 0.65}};
+  tracked.CountInsertion(Pose2Frame(Pose2()), edge, cells, counted);
+  cells.Clear();
+  tracked.CountInsertion(Pose2Frame(Pose2()), edge, cells, free, true);
+  EXPECT_EQ(counted.fresh, 1u);
+  EXPECT_EQ(free.fresh, 0u);
+  EXPECT_EQ(free.inside, 1u);
+
+  // Two scans cross the same cells; taking one back leaves the other's rays, taking both back
+  // leaves none.
+  tracked.AddScan(scan, pose);
+  tracked.AddScan(scan, pose, -1);
+  EXPECT_TRUE(tracked.crossed(index(1.05, 0.55)));
+  EXPECT_TRUE(tracked.Frontier(index(1.05, 0.65)));
+  tracked.AddScan(scan, pose, -1);
+  EXPECT_EQ(tracked.occupied(), 0u);
+  EXPECT_FALSE(tracked.crossed(index(1.05, 0.55)));
+  EXPECT_FALSE(tracked.Frontier(index(1.05, 0.65)));
+}
+
 // A set for the cells of a grid of `grid_cells` cells, of either kind.
 template <typename Cells>
 Cells CellsFor(std::size_t grid_cells) {

@@ -315,6 +315,17 @@ TEST_F(SlamOutputsTest, SummarySaysWhatRanWhatItFoundAndHowWell) {
   EXPECT_EQ(s.find("odometry alone: x 0.00 cm"), std::string::npos) << "odometry drifts\n" << s;
 }
 
+TEST_F(SlamOutputsTest, SummarySaysWhenTheSeenSpacesEdgeIsLeftFree) {
+  proto::SlamParams params = Params();
+  params.set_local_free_frontier(true);
+  const std::string s =
+      Write(SlamOutputs(log_, params, result_, std::nullopt, 2)).at("summary.txt");
+  EXPECT_NE(s.find("odometry where the scan fixes nothing, the seen space's edge free, refined "
+                   "below a cell"),
+            std::string::npos)
+      << s;
+}
+
 // A run that spans more than a map of 5 cm cells can hold (2^26 cells, 8192 on a side, 410 m)
 // still hands back everything, the map at 10 cm, and says so.
 TEST_F(SlamOutputsTest, ARunTooWideForTheMapsCellsGetsACoarserMap) {

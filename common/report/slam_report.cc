@@ -89,6 +89,7 @@ void PrintSearches(std::ostream& s, const proto::SlamParams& p) {
     << " iterations on " << p.local_fitness() << ", map cells " << p.resolution_m() << " m, "
     << (p.local_odometry_pull() > 0 ? "ties to odometry, " : "")
     << (p.local_min_constraint_ratio() > 0 ? "odometry where the scan fixes nothing, " : "")
+    << (p.local_free_frontier() ? "the seen space's edge free, " : "")
     << (p.local_refine_iterations() > 0 ? "refined below a cell" : "not refined") << "\n";
   s << "  global search: ";
   if (p.local_only()) {

@@ -105,8 +105,10 @@ HitCountGrid EmptyMapFor(const Dataset& dataset, const LocalSearchParams& params
        << params.resolution << " m the search's map holds; map at a coarser resolution";
     throw Error(os.str());
   }
-  return HitCountGrid(params.resolution, origin, static_cast<int>(cells.x()),
-                      static_cast<int>(cells.y()));
+  HitCountGrid map(params.resolution, origin, static_cast<int>(cells.x()),
+                   static_cast<int>(cells.y()));
+  if (params.free_frontier) map.TrackRays();
+  return map;
 }
 
 StepCorrection CorrectStep(const HitCountGrid& map, const LaserScan& scan, const Pose2& predicted,
@@ -122,7 +124,7 @@ StepCorrection CorrectStep(const HitCountGrid& map, const LaserScan& scan, const
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t round = 0; round <= params.recentres; ++round) {
     const StepCorrectionProblem problem(map, scan, result.pose, params.max_error, params.fitness,
-                                        params.odometry_pull);
+                                        params.odometry_pull, params.free_frontier);
     ParticleSwarm swarm(pso);
     Rng stream = round == 0 ? rng : rng.Stream(round);
     const OptimResult r = Minimize(problem, swarm, stop, stream);
@@ -133,7 +135,16 @@ StepCorrection CorrectStep(const HitCountGrid& map, const LaserScan& scan, const
     if (!OnFace(r.best, params.max_error)) break;
   }
   if (params.refine.iterations == 0 && params.min_constraint_ratio == 0.0) return result;
-  const std::vector<Eigen::Vector2d> returns = ReturnPoints(scan);
+  std::vector<Eigen::Vector2d> returns = ReturnPoints(scan);
+  if (params.free_frontier) {
+    // The interpolated occupancy slopes from a mapped wall's end into the edge beyond it, so a
+    // return there would pull the refinement, and read as information, as it pulled eq. 1.
+    const Pose2Frame frame(result.pose);
+    std::erase_if(returns, [&](const Eigen::Vector2d& p) {
+      const std::optional<std::size_t> cell = map.CellIndex(frame * p);
+      return cell && map.Frontier(*cell);
+    });
+  }
   if (params.refine.iterations > 0) {
     result.pose = RefineScanPose(map, returns, result.pose, params.refine);
   }

@@ -77,6 +77,13 @@ struct LocalSearchParams {
   // best-constrained direction's (KeepPriorWhereUnconstrained). Our addition; 0: none, as in 002
   // (docs/rss_slam.md).
   double min_constraint_ratio = 0.005;
+  // Eq. 1 counts a return that lands where the map has no hit as a new cell, whether the rays so
+  // far showed that cell empty or never reached it. At the edge of what has been seen (a wall a
+  // corner hid, a wall just past the laser's reach, the gaps grazing beams leave along a wall)
+  // every such return pulls the step back onto the part already mapped. With this on, the map
+  // records the cells its rays crossed, and a return on the edge (HitCountGrid::Frontier) adds
+  // no cell. Our addition; off: as in 002 (docs/rss_slam.md).
+  bool free_frontier = false;
   // After the PSO, the step's pose is aligned to the map below a cell (our addition; 002 has
   // none). iterations = 0 leaves the PSO's pose, as in 002.
   ScanRefinementParams refine;

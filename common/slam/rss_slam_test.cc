@@ -128,9 +128,12 @@ TEST(RssSlamTest, ProblemsRebuiltFromTheWireGiveTheSameRun) {
   ExpectSameRun(here, remote);
 }
 
-TEST(RssSlamTest, ResumingFromAnyCheckpointGivesTheUninterruptedRun) {
+// Resumed from any of a run's checkpoints, between scans or part-way through a search, the run
+// ends as the uninterrupted one does; a state that does not fit the log is refused.
+void ExpectResumesGiveTheUninterruptedRun(bool free_frontier) {
   const Dataset d = Drive(60);
   RssSlamParams params = Quick();
+  params.local.free_frontier = free_frontier;
   params.generations = 25;       // three epochs of 10: checkpoints inside each search...
   params.preset = "immune-004";  // ...which 002's (mu+lambda) ends early here, converged
   std::vector<RssSlamState> states, part_way;
@@ -165,6 +168,14 @@ TEST(RssSlamTest, ResumingFromAnyCheckpointGivesTheUninterruptedRun) {
   broken = part_way[0];
   broken.search_on_loop = true;
   EXPECT_THROW(RunRssSlam(d, params, 3, bad), Error);
+}
+
+// Also with the seen space's edge left free, whose ray coverage a resumed run renders afresh.
+TEST(RssSlamTest, ResumingFromAnyCheckpointGivesTheUninterruptedRun) {
+  for (const bool free_frontier : {false, true}) {
+    SCOPED_TRACE(free_frontier ? "edge free" : "edge counted");
+    ExpectResumesGiveTheUninterruptedRun(free_frontier);
+  }
 }
 
 TEST(RssSlamTest, SeedsChangeTheRun) {

@@ -57,6 +57,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   p.set_min_periodic_eq6_gain(0.0);
   p.set_min_eq7_gain(0.1);
   p.set_hold_loops(true);
+  p.set_local_free_frontier(true);
   p.set_match_window_per_m(0.0);
   p.set_max_match_window_m(2.5);
   p.set_match_spread_score(0.0);
@@ -83,6 +84,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   EXPECT_EQ(r.local.refine.max_turn, 0.03);
   EXPECT_EQ(r.min_eq7_gain, 0.1);
   EXPECT_TRUE(r.hold_loops);
+  EXPECT_TRUE(r.local.free_frontier);
   EXPECT_EQ(r.loops.match_window_per_metre, 0.0);
   EXPECT_EQ(r.loops.max_match_window, 2.5);
   EXPECT_EQ(r.loops.spread_score, 0.0);

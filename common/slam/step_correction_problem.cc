@@ -30,8 +30,13 @@ std::string_view LocalFitnessName(LocalFitness fitness) {
 StepCorrectionProblem::StepCorrectionProblem(const HitCountGrid& map, const LaserScan& scan,
                                              const Pose2& predicted,
                                              const Eigen::Vector3d& max_error, LocalFitness fitness,
-                                             double odometry_pull)
-    : map_(map), predicted_(predicted), fitness_(fitness), lower_(-max_error), upper_(max_error) {
+                                             double odometry_pull, bool free_frontier)
+    : map_(map),
+      predicted_(predicted),
+      fitness_(fitness),
+      free_frontier_(free_frontier),
+      lower_(-max_error),
+      upper_(max_error) {
   if (!(max_error.array() >= 0.0).all() || !max_error.allFinite()) {
     throw Error("local search: the maximum step error must be finite and not negative");
   }
@@ -81,7 +86,7 @@ double StepCorrectionProblem::Score(const Eigen::Ref<const Eigen::VectorXd>& err
                                     CellSet& cells) const {
   cells.Clear();
   HitCountGrid::Insertion added;  // fresh: the cells the scan makes occupied
-  map_.CountInsertion(Pose2Frame(Corrected(error)), returns_, cells, added);
+  map_.CountInsertion(Pose2Frame(Corrected(error)), returns_, cells, added, free_frontier_);
   const double occupied = static_cast<double>(window_.occupied + added.fresh);
   const double pull = pull_.dot(error.head<3>().cwiseAbs2());
   if (fitness_ == LocalFitness::kEval1) return occupied + pull;

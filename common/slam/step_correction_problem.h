@@ -30,12 +30,14 @@ std::string_view LocalFitnessName(LocalFitness fitness);
 // negated. With an odometry pull p, a candidate also pays p cells' worth of score times its mean
 // squared correction relative to max_error (the axes with no room pay nothing), so that of two
 // corrections that fit alike the smaller wins; a cell's worth is 1 in eval1, and in eval2 what one
-// more observation of an occupied cell of the window is worth.
+// more observation of an occupied cell of the window is worth. With `free_frontier`, a return on
+// the edge of what the map's rays have seen adds no cell (HitCountGrid::Frontier; the map must
+// track rays for that to change anything).
 class StepCorrectionProblem : public Problem {
  public:
   StepCorrectionProblem(const HitCountGrid& map, const LaserScan& scan, const Pose2& predicted,
                         const Eigen::Vector3d& max_error, LocalFitness fitness,
-                        double odometry_pull = 0.0);
+                        double odometry_pull = 0.0, bool free_frontier = false);
 
   const Eigen::VectorXd& lower() const override { return lower_; }
   const Eigen::VectorXd& upper() const override { return upper_; }
@@ -54,6 +56,7 @@ class StepCorrectionProblem : public Problem {
   const HitCountGrid& map_;
   Pose2Frame predicted_;
   LocalFitness fitness_;
+  bool free_frontier_;
   // The pull per axis, in score per squared unit of correction.
   Eigen::Vector3d pull_ = Eigen::Vector3d::Zero();
   std::vector<Eigen::Vector2d> returns_;  // the scan's end points in the laser's frame
