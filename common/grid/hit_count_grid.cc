@@ -16,6 +16,16 @@ namespace evoslam {
 
 static_assert(HitCountGrid::kMaxCells < (1LL << 32) - 1, "a CellSet key is a cell index + 1");
 
+namespace {
+
+// A cell's count moved by `delta`, never below zero: hits and ray crossings alike.
+std::uint32_t Moved(std::uint32_t count, int delta) {
+  if (delta >= 0) return count + static_cast<std::uint32_t>(delta);
+  return count - std::min(count, static_cast<std::uint32_t>(-static_cast<long long>(delta)));
+}
+
+}  // namespace
+
 CellSet::CellSet(std::size_t expected) {
   std::size_t slots = 16;
   while (slots < 2 * expected) slots *= 2;
@@ -77,11 +87,7 @@ bool HitCountGrid::Add(const Eigen::Vector2d& point, int delta) {
   if (!index) return false;
   std::uint32_t& c = counts_[*index];
   const std::uint32_t before = c;
-  if (delta >= 0) {
-    c += static_cast<std::uint32_t>(delta);
-  } else {
-    c -= std::min(c, static_cast<std::uint32_t>(-static_cast<long long>(delta)));
-  }
+  c = Moved(c, delta);
   total_ = total_ - before + c;
   occupied_ = occupied_ - (before > 0) + (c > 0);
   if ((before > 0) != (c > 0)) occupied_bits_[*index / 64] ^= std::uint64_t{1} << (*index % 64);
@@ -129,11 +135,7 @@ void HitCountGrid::AddCrossings(const Eigen::Vector2d& from, const Eigen::Vector
     const std::size_t i = Index(x, y);
     std::uint32_t& c = crossings_[i];
     const std::uint32_t before = c;
-    if (delta >= 0) {
-      c += static_cast<std::uint32_t>(delta);
-    } else {
-      c -= std::min(c, static_cast<std::uint32_t>(-static_cast<long long>(delta)));
-    }
+    c = Moved(c, delta);
     if ((before > 0) != (c > 0)) crossed_bits_[i / 64] ^= std::uint64_t{1} << (i % 64);
     if (next_x < next_y) {
       if (next_x > 1.0) break;
