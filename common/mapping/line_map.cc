@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 
+#include "common/io/line_reader.h"
 #include "common/io/text_fields.h"
 #include "common/mapping/segment_geometry.h"
 #include "common/util/error.h"
@@ -251,16 +252,13 @@ std::vector<std::size_t> LineMap::SegmentsNear(const Eigen::Vector2d& center, do
 }
 
 LineMap ReadLineMap(const std::filesystem::path& path) {
-  const std::string source = path.string();
-  std::ifstream in(path);
-  if (!in) throw InputError(source, 0, "cannot open line map for reading");
+  LineReader in(path);
+  const std::string& source = in.source();
   std::vector<Segment> segments;
-  std::string line;
   std::vector<std::string_view> fields;
-  std::size_t line_number = 0;
-  while (std::getline(in, line)) {
-    ++line_number;
-    SplitFields(StripHashComment(line), &fields);
+  while (const std::optional<std::string_view> line = in.Next()) {
+    const std::size_t line_number = in.line_number();
+    SplitFields(StripHashComment(*line), &fields);
     if (fields.empty()) continue;
     if (fields.size() != 4) {
       throw InputError(source, line_number,
@@ -283,7 +281,6 @@ LineMap ReadLineMap(const std::filesystem::path& path) {
     }
     segments.push_back(s);
   }
-  if (in.bad()) throw InputError(source, line_number, "read error");
   return LineMap(std::move(segments));
 }
 

@@ -70,7 +70,7 @@ class LineMap {
 };
 
 // Text format: one wall per line, "x1 y1 x2 y2" in metres; '#' starts a comment; blank lines
-// are ignored. Errors name the file and line.
+// are ignored. Plain, gzip or bzip2, as LineReader reads. Errors name the file and line.
 LineMap ReadLineMap(const std::filesystem::path& path);
 void WriteLineMap(const LineMap& map, const std::filesystem::path& path);
 

@@ -10,6 +10,7 @@
 #include <random>
 #include <string>
 
+#include "common/io/testing_files.h"
 #include "common/mapping/segment_geometry.h"
 #include "common/util/error.h"
 #include "common/util/scratch_dir.h"
@@ -267,6 +268,34 @@ TEST(LineMapIoTest, SkipsCommentsAndBlankLines) {
   EXPECT_EQ(map.segments()[2].a, Eigen::Vector2d(-0.1, 2));
 }
 
+// A world drawn elsewhere often comes compressed; it reads as the plain file does, and an error
+// in it still names the line.
+TEST(LineMapIoTest, ReadsGzipAndBzip2AsThePlainFile) {
+  const std::string text = "# a room\n0 0 4 0\n4 0 4 3.5\n4 3.5 0 3.5\n";
+  const testing::ScratchDir dir;
+  io_testing::WriteBytes(dir / "room.lines.gz", io_testing::GzipBytes(text));
+  io_testing::WriteBytes(dir / "room.lines.bz2", io_testing::Bzip2Bytes(text));
+  WriteText(dir / "room.lines", text);
+  const LineMap plain = ReadLineMap(dir / "room.lines");
+  ASSERT_EQ(plain.size(), 3u);
+  for (const char* name : {"room.lines.gz", "room.lines.bz2"}) {
+    const LineMap read = ReadLineMap(dir / name);
+    ASSERT_EQ(read.size(), plain.size()) << name;
+    for (std::size_t i = 0; i < plain.size(); ++i) {
+      EXPECT_EQ(read.segments()[i].a, plain.segments()[i].a) << name;
+      EXPECT_EQ(read.segments()[i].b, plain.segments()[i].b) << name;
+    }
+  }
+  const std::filesystem::path bad = dir / "bad.lines.gz";
+  io_testing::WriteBytes(bad, io_testing::GzipBytes("0 0 4 0\n0 0 4\n"));
+  try {
+    ReadLineMap(bad);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr(bad.string() + ":2: expected a wall as 4 numbers"));
+  }
+}
+
 TEST(LineMapIoTest, MalformedLinesNameFileAndLine) {
   const struct {
     std::string text;
@@ -302,6 +331,12 @@ TEST(LineMapIoTest, MissingFileNamesPath) {
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), HasSubstr(path.string()));
+  }
+  try {
+    ReadLineMap(dir.path());
+    ADD_FAILURE() << "no error for a directory";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr(dir.path().string() + ": cannot read"));
   }
   EXPECT_THROW(WriteLineMap(LineMap(), dir / "no_such_dir" / "x.lines"), Error);
 }
