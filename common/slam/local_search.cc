@@ -145,14 +145,14 @@ StepCorrection CorrectStep(const HitCountGrid& map, const LaserScan& scan, const
       return cell && map.Frontier(*cell);
     });
   }
+  RefinedPose refined{result.pose};
   if (params.refine.iterations > 0) {
-    result.pose = RefineScanPose(map, returns, result.pose, params.refine);
+    refined = RefineScanPose(map, returns, result.pose, params.refine);
+  } else {
+    refined.information = ScanInformation(map, returns, result.pose, params.refine.wall_share);
   }
-  if (params.min_constraint_ratio > 0.0) {
-    result.pose =
-        KeepPriorWhereUnconstrained(map, returns, result.pose, predicted,
-                                    params.min_constraint_ratio, params.refine.wall_share);
-  }
+  result.pose = KeepPriorWhereUnconstrained(refined.information, returns, refined.pose, predicted,
+                                            params.min_constraint_ratio);
   return result;
 }
 

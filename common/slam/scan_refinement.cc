@@ -102,15 +102,20 @@ std::optional<OccupancySample> SampleOccupancy(const HitCountGrid& map,
   return s;
 }
 
-Pose2 RefineScanPose(const HitCountGrid& map, std::span<const Eigen::Vector2d> returns,
-                     const Pose2& start, const ScanRefinementParams& params) {
+Eigen::Matrix3d ScanInformation(const HitCountGrid& map, std::span<const Eigen::Vector2d> returns,
+                                const Pose2& pose, double wall_share) {
+  return NormalEquations(map, returns, pose, wall_share).h;
+}
+
+RefinedPose RefineScanPose(const HitCountGrid& map, std::span<const Eigen::Vector2d> returns,
+                           const Pose2& start, const ScanRefinementParams& params) {
   // The offset from `start` is kept apart from the pose, whose heading wraps at pi.
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();
   const auto moved = [&start](const Eigen::Vector3d& d) {
     return Pose2(start.x() + d.x(), start.y() + d.y(), start.theta() + d.z());
   };
   const std::optional<Eigen::Vector3d> scale = CoordinateScale(returns);
-  if (!scale) return start;
+  if (!scale) return {start, Eigen::Matrix3d::Zero()};
   const double max_shift = params.max_shift_cells * map.resolution();
   Normal at = NormalEquations(map, returns, start, params.wall_share);
   for (std::size_t it = 0; it < params.iterations; ++it) {
@@ -138,16 +143,15 @@ Pose2 RefineScanPose(const HitCountGrid& map, std::span<const Eigen::Vector2d> r
     offset = next;
     at = there;
   }
-  return moved(offset);
+  return {moved(offset), at.h};
 }
 
-Pose2 KeepPriorWhereUnconstrained(const HitCountGrid& map, std::span<const Eigen::Vector2d> returns,
-                                  const Pose2& pose, const Pose2& prior, double min_ratio,
-                                  double wall_share) {
+Pose2 KeepPriorWhereUnconstrained(const Eigen::Matrix3d& information,
+                                  std::span<const Eigen::Vector2d> returns, const Pose2& pose,
+                                  const Pose2& prior, double min_ratio) {
   const std::optional<Eigen::Vector3d> scale = CoordinateScale(returns);
   if (!(min_ratio > 0.0) || !scale) return pose;
-  const Normal at = NormalEquations(map, returns, pose, wall_share);
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(scale->asDiagonal() * at.h *
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(scale->asDiagonal() * information *
                                                              scale->asDiagonal());
   if (eigen.info() != Eigen::Success) return pose;
   const Eigen::Vector3d& values = eigen.eigenvalues();  // ascending

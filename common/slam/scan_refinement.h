@@ -44,21 +44,33 @@ struct OccupancySample {
 std::optional<OccupancySample> SampleOccupancy(const HitCountGrid& map,
                                                const Eigen::Vector2d& point, double wall_share);
 
+// The normal matrix J^T J of the refinement's least squares at `pose`, in (x, y, heading): how
+// strongly the returns pin each direction down.
+Eigen::Matrix3d ScanInformation(const HitCountGrid& map, std::span<const Eigen::Vector2d> returns,
+                                const Pose2& pose, double wall_share);
+
+struct RefinedPose {
+  Pose2 pose;
+  // ScanInformation at `pose`, which the refinement has already summed; the constraint rule
+  // reads it there rather than summing it again.
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+};
+
 // `start` moved to minimise the sum over `returns` (in the laser's frame) of (1 - occupancy)^2,
 // within params.max_shift_cells and params.max_turn of it. Stops when a step does not lower the
 // sum. A direction the returns do not constrain at all keeps the start's value.
-Pose2 RefineScanPose(const HitCountGrid& map, std::span<const Eigen::Vector2d> returns,
-                     const Pose2& start, const ScanRefinementParams& params);
+RefinedPose RefineScanPose(const HitCountGrid& map, std::span<const Eigen::Vector2d> returns,
+                           const Pose2& start, const ScanRefinementParams& params);
 
 // `pose` with its offset from `prior` kept only along the directions the returns constrain: along
-// a direction whose information (an eigenvalue of the refinement's normal matrix at `pose`, the
+// a direction whose information (an eigenvalue of `information`, ScanInformation at `pose`, the
 // heading measured by the returns' mean range) is below `min_ratio` times the best-constrained
 // direction's, the prior's value is taken. Down a featureless corridor longer than the laser's
 // reach the scan fixes nothing along the corridor, and a search's pick there is noise. Returns
 // `pose` for min_ratio <= 0 or no returns, and `prior` where the map constrains nothing at all.
-Pose2 KeepPriorWhereUnconstrained(const HitCountGrid& map, std::span<const Eigen::Vector2d> returns,
-                                  const Pose2& pose, const Pose2& prior, double min_ratio,
-                                  double wall_share);
+Pose2 KeepPriorWhereUnconstrained(const Eigen::Matrix3d& information,
+                                  std::span<const Eigen::Vector2d> returns, const Pose2& pose,
+                                  const Pose2& prior, double min_ratio);
 
 }  // namespace evoslam
 

@@ -119,12 +119,32 @@ TEST(RefineScanPoseTest, MovesAPoseOffByLessThanACellTowardsTheTruth) {
   for (const Pose2& off :
        {Pose2(0.03, -0.02, 0.0), Pose2(-0.025, 0.0, 0.01), Pose2(0.0, 0.035, -0.012)}) {
     const Pose2 start = truth * off;
-    const Pose2 refined = RefineScanPose(map, returns, start, params);
+    const Pose2 refined = RefineScanPose(map, returns, start, params).pose;
     EXPECT_LT(Distance(refined, truth), 0.5 * Distance(start, truth)) << off;
     EXPECT_LT(std::abs(refined.theta() - truth.theta()),
               std::max(0.003, 0.5 * std::abs(start.theta() - truth.theta())))
         << off;
   }
+}
+
+// The constraint rule reads the refinement's information rather than summing it again: it must be
+// the information at the pose returned, whether the refinement moved or stayed.
+TEST(RefineScanPoseTest, HandsOnTheInformationAtThePoseItReturns) {
+  const HitCountGrid map = RoomMap();
+  const Pose2 truth(3.1, 2.5, 0.8);
+  const std::vector<Eigen::Vector2d> returns =
+      ReturnPoints(testing::ScanFrom(testing::BoxRoom(), truth));
+  ScanRefinementParams params;
+  for (const Pose2& start : {truth * Pose2(0.03, -0.02, 0.01), truth}) {
+    for (const std::size_t iterations : {std::size_t{0}, std::size_t{1}, std::size_t{10}}) {
+      params.iterations = iterations;
+      const RefinedPose refined = RefineScanPose(map, returns, start, params);
+      const Eigen::Matrix3d expected = ScanInformation(map, returns, refined.pose, 0.3);
+      EXPECT_GT(expected.trace(), 0.0);
+      EXPECT_EQ(refined.information, expected) << start << " after " << iterations;
+    }
+  }
+  EXPECT_EQ(RefineScanPose(map, {}, truth, params).information, Eigen::Matrix3d::Zero());
 }
 
 TEST(RefineScanPoseTest, StaysWithinItsLimitsAndLeavesAPoseWithNothingToAlignTo) {
@@ -137,17 +157,17 @@ TEST(RefineScanPoseTest, StaysWithinItsLimitsAndLeavesAPoseWithNothingToAlignTo)
   params.iterations = 10;
   params.max_shift_cells = 0.2;  // 1 cm
   params.max_turn = 0.004;
-  const Pose2 refined = RefineScanPose(map, returns, start, params);
+  const Pose2 refined = RefineScanPose(map, returns, start, params).pose;
   EXPECT_LE(Distance(refined, start), 0.01 + 1e-12);
   EXPECT_LE(std::abs(refined.theta() - start.theta()), 0.004 + 1e-12);
   EXPECT_LT(Distance(refined, truth), Distance(start, truth));
 
   params.iterations = 0;
-  EXPECT_EQ(RefineScanPose(map, returns, start, params), start);
+  EXPECT_EQ(RefineScanPose(map, returns, start, params).pose, start);
   params.iterations = 10;
   const HitCountGrid blank(0.05, Eigen::Vector2d(-1.0, -1.0), 180, 200);
-  EXPECT_EQ(RefineScanPose(blank, returns, start, params), start);
-  EXPECT_EQ(RefineScanPose(map, {}, start, params), start);
+  EXPECT_EQ(RefineScanPose(blank, returns, start, params).pose, start);
+  EXPECT_EQ(RefineScanPose(map, {}, start, params).pose, start);
 }
 
 TEST(RefineScanPoseTest, AHeadingNearPiDoesNotWrapIntoTheLimit) {
@@ -163,7 +183,7 @@ TEST(RefineScanPoseTest, AHeadingNearPiDoesNotWrapIntoTheLimit) {
   const Pose2 start = truth * Pose2(0.02, 0.02, 0.008);  // heading past pi, wrapped to -pi + ...
   ScanRefinementParams params;
   params.iterations = 10;
-  const Pose2 refined = RefineScanPose(map, returns, start, params);
+  const Pose2 refined = RefineScanPose(map, returns, start, params).pose;
   EXPECT_LT(Distance(refined, truth), Distance(start, truth));
   EXPECT_LT(std::abs(WrapAngle(refined.theta() - truth.theta())), 0.005);
 }
@@ -177,7 +197,7 @@ TEST(RefineScanPoseTest, AlongACorridorThePoseKeepsItsPlace) {
   const std::vector<Eigen::Vector2d> returns =
       ReturnPoints(testing::ScanFrom(corridor, truth, 181, 4.0));
   const Pose2 start(0.32, 0.02, 0.005);
-  const Pose2 refined = RefineScanPose(map, returns, start, ScanRefinementParams{});
+  const Pose2 refined = RefineScanPose(map, returns, start, ScanRefinementParams{}).pose;
   EXPECT_LT(std::abs(refined.y() - truth.y()), 0.5 * std::abs(start.y() - truth.y()));
   EXPECT_LT(std::abs(refined.theta() - truth.theta()), 0.5 * std::abs(start.theta()));
   EXPECT_NEAR(refined.x(), start.x(), 1e-9);
@@ -203,10 +223,10 @@ TEST(RefineScanPoseTest, AcrossAThickWallThePoseFollowsTheCountsToItsMiddle) {
       ReturnPoints(testing::ScanFrom(corridor, truth, 181, 4.0));
   const Pose2 start(0.3, 0.02, 0.0);
   ScanRefinementParams params;
-  const Pose2 refined = RefineScanPose(map, returns, start, params);
+  const Pose2 refined = RefineScanPose(map, returns, start, params).pose;
   EXPECT_LT(std::abs(refined.y() - truth.y()), 0.002) << refined;
   params.wall_share = 0.0;
-  EXPECT_EQ(RefineScanPose(map, returns, start, params), start);
+  EXPECT_EQ(RefineScanPose(map, returns, start, params).pose, start);
 }
 
 // The corridor of AlongACorridorThePoseKeepsItsPlace: a pose off its prior both ways keeps the
@@ -219,12 +239,17 @@ TEST(KeepPriorWhereUnconstrainedTest, AlongACorridorThePriorsPlaceIsTaken) {
   const Pose2 prior(0.3, 0.0, 0.0);
   const std::vector<Eigen::Vector2d> returns =
       ReturnPoints(testing::ScanFrom(corridor, pose, 181, 4.0));
-  const Pose2 kept = KeepPriorWhereUnconstrained(map, returns, pose, prior, 0.005, 0.3);
+  const Pose2 kept = KeepPriorWhereUnconstrained(ScanInformation(map, returns, pose, 0.3), returns,
+                                                 pose, prior, 0.005);
   EXPECT_NEAR(kept.x(), prior.x(), 1e-6) << kept;
   EXPECT_NEAR(kept.y(), pose.y(), 1e-6) << kept;
   EXPECT_NEAR(kept.theta(), pose.theta(), 1e-6) << kept;
-  EXPECT_EQ(KeepPriorWhereUnconstrained(map, returns, pose, prior, 0.0, 0.3), pose);
-  EXPECT_EQ(KeepPriorWhereUnconstrained(map, {}, pose, prior, 0.005, 0.3), pose);
+  EXPECT_EQ(KeepPriorWhereUnconstrained(ScanInformation(map, returns, pose, 0.3), returns, pose,
+                                        prior, 0.0),
+            pose);
+  EXPECT_EQ(
+      KeepPriorWhereUnconstrained(ScanInformation(map, {}, pose, 0.3), {}, pose, prior, 0.005),
+      pose);
 }
 
 // In a room every direction is pinned down: the pose stays. On a map with nothing on it, no
@@ -235,12 +260,15 @@ TEST(KeepPriorWhereUnconstrainedTest, InARoomThePoseStaysOnABlankMapThePriorIsTa
   const Pose2 prior = pose * Pose2(0.1, -0.05, 0.03);
   const std::vector<Eigen::Vector2d> returns =
       ReturnPoints(testing::ScanFrom(testing::BoxRoom(), pose));
-  const Pose2 kept = KeepPriorWhereUnconstrained(map, returns, pose, prior, 0.005, 0.3);
+  const Pose2 kept = KeepPriorWhereUnconstrained(ScanInformation(map, returns, pose, 0.3), returns,
+                                                 pose, prior, 0.005);
   EXPECT_NEAR(kept.x(), pose.x(), 1e-9);
   EXPECT_NEAR(kept.y(), pose.y(), 1e-9);
   EXPECT_NEAR(kept.theta(), pose.theta(), 1e-9);
   const HitCountGrid blank(0.05, Eigen::Vector2d(-1.0, -1.0), 180, 200);
-  EXPECT_EQ(KeepPriorWhereUnconstrained(blank, returns, pose, prior, 0.005, 0.3), prior);
+  EXPECT_EQ(KeepPriorWhereUnconstrained(ScanInformation(blank, returns, pose, 0.3), returns, pose,
+                                        prior, 0.005),
+            prior);
 }
 
 TEST(ScanRefinementParamsTest, RejectsLimitsThatAreNegativeOrNotFinite) {
