@@ -26,6 +26,11 @@ HitCountGrid RoomMap() {
   return map;
 }
 
+// The returns of a scan of the room of RoomMap taken at `pose`.
+std::vector<Eigen::Vector2d> RoomReturns(const Pose2& pose) {
+  return ReturnPoints(testing::ScanFrom(testing::BoxRoom(), pose));
+}
+
 // Two long parallel walls, each at the centre of a row of 5 cm cells, and a map of them in which
 // each wall fills its row once.
 constexpr double kCorridorWall = 1.025;
@@ -112,8 +117,7 @@ TEST(SampleOccupancyTest, ReadAgainstTheStrongestCountNearbyAWallPeaksAlongItsMi
 TEST(RefineScanPoseTest, MovesAPoseOffByLessThanACellTowardsTheTruth) {
   const HitCountGrid map = RoomMap();
   const Pose2 truth(3.1, 2.5, 0.8);
-  const std::vector<Eigen::Vector2d> returns =
-      ReturnPoints(testing::ScanFrom(testing::BoxRoom(), truth));
+  const std::vector<Eigen::Vector2d> returns = RoomReturns(truth);
   ScanRefinementParams params;
   params.iterations = 10;
   for (const Pose2& off :
@@ -132,8 +136,7 @@ TEST(RefineScanPoseTest, MovesAPoseOffByLessThanACellTowardsTheTruth) {
 TEST(RefineScanPoseTest, HandsOnTheInformationAtThePoseItReturns) {
   const HitCountGrid map = RoomMap();
   const Pose2 truth(3.1, 2.5, 0.8);
-  const std::vector<Eigen::Vector2d> returns =
-      ReturnPoints(testing::ScanFrom(testing::BoxRoom(), truth));
+  const std::vector<Eigen::Vector2d> returns = RoomReturns(truth);
   ScanRefinementParams params;
   for (const Pose2& start : {truth * Pose2(0.03, -0.02, 0.01), truth}) {
     for (const std::size_t iterations : {std::size_t{0}, std::size_t{1}, std::size_t{10}}) {
@@ -150,8 +153,7 @@ TEST(RefineScanPoseTest, HandsOnTheInformationAtThePoseItReturns) {
 TEST(RefineScanPoseTest, StaysWithinItsLimitsAndLeavesAPoseWithNothingToAlignTo) {
   const HitCountGrid map = RoomMap();
   const Pose2 truth(3.1, 2.5, 0.8);
-  const std::vector<Eigen::Vector2d> returns =
-      ReturnPoints(testing::ScanFrom(testing::BoxRoom(), truth));
+  const std::vector<Eigen::Vector2d> returns = RoomReturns(truth);
   const Pose2 start = truth * Pose2(0.04, -0.03, 0.02);
   ScanRefinementParams params;
   params.iterations = 10;
@@ -258,8 +260,7 @@ TEST(KeepPriorWhereUnconstrainedTest, InARoomThePoseStaysOnABlankMapThePriorIsTa
   const HitCountGrid map = RoomMap();
   const Pose2 pose(3.1, 2.5, 0.8);
   const Pose2 prior = pose * Pose2(0.1, -0.05, 0.03);
-  const std::vector<Eigen::Vector2d> returns =
-      ReturnPoints(testing::ScanFrom(testing::BoxRoom(), pose));
+  const std::vector<Eigen::Vector2d> returns = RoomReturns(pose);
   const Pose2 kept = KeepPriorWhereUnconstrained(ScanInformation(map, returns, pose, 0.3), returns,
                                                  pose, prior, 0.005);
   EXPECT_NEAR(kept.x(), pose.x(), 1e-9);
