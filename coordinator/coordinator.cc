@@ -28,6 +28,7 @@
 #include "coordinator/job_context.h"
 #include "coordinator/job_kinds.h"
 #include "coordinator/job_store.h"
+#include "coordinator/progress_throttle.h"
 #include "coordinator/task_board.h"
 #include "coordinator/worker_table.h"
 #include "coordinator/zap_handler.h"
@@ -667,11 +668,9 @@ void Coordinator::Impl::RunJob(const std::string& job_id) {
       std::lock_guard lock(store_mutex_);
       store_.SaveCheckpoint(job_id, 0, ++slot_epoch, bytes);
     };
-    Clock::time_point last_progress{};
+    ProgressThrottle throttle(std::chrono::milliseconds(200));
     context.progress = [&](const proto::JobStatus& p) {
-      const Clock::time_point now = Clock::now();
-      if (now - last_progress < std::chrono::milliseconds(200) && p.done() != p.total()) return;
-      last_progress = now;
+      if (!throttle.Admit(p, ProgressThrottle::Clock::now())) return;
       {
         std::lock_guard lock(store_mutex_);
         store_.SetRunning(job_id, p.phase(), p.done(), p.total(), p.evaluations());
