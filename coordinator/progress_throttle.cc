@@ -3,8 +3,10 @@
 namespace evoslam {
 
 bool ProgressThrottle::Admit(const proto::JobStatus& report, Clock::time_point now) {
-  const bool keep = !any_ || report.phase() != phase_ || now - last_ >= interval_ ||
-                    report.done() == report.total();
+  // A new phase waits a tenth of the interval: enough to show any phase that lasts longer, and a
+  // job that changes phase every few milliseconds still writes at most ten times an interval.
+  const Clock::duration wait = report.phase() != phase_ ? interval_ / 10 : interval_;
+  const bool keep = !any_ || now - last_ >= wait || report.done() == report.total();
   if (!keep) return false;
   any_ = true;
   phase_ = report.phase();

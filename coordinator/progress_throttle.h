@@ -10,10 +10,10 @@ namespace evoslam {
 
 // Which of a job's progress reports the coordinator records. A record costs a database write and
 // an event to every watcher, and a local search reports every scan, so within a phase at most one
-// report per interval is kept, plus the one that completes the phase. A report that starts a
-// phase is always kept: a stretch of local search between two global searches can be shorter
-// than the interval, and a watcher (or a test waiting for the job to be part-way) would otherwise
-// never see it.
+// report per interval is kept, plus the one that completes the phase. A report of another phase
+// than the last one recorded is kept after a tenth of the interval: a stretch of local search
+// between two global searches can be shorter than the interval, and a watcher (or a test waiting
+// for the job to be part-way) would otherwise never see it.
 class ProgressThrottle {
  public:
   using Clock = std::chrono::steady_clock;

@@ -33,17 +33,19 @@ TEST(ProgressThrottleTest, WithinAPhaseOneReportPerIntervalAndTheLastAreKept) {
 }
 
 // Local search, a global search, a short stretch of local search and another global search, each
-// far shorter than the interval: every change of phase shows.
-TEST(ProgressThrottleTest, EveryChangeOfPhaseIsKeptHoweverSoon) {
+// far shorter than the interval: each phase shows once it has lasted a tenth of the interval.
+TEST(ProgressThrottleTest, ANewPhaseShowsAfterATenthOfTheInterval) {
   ProgressThrottle throttle(milliseconds(200));
   const Clock::time_point t0 = Clock::now();
   EXPECT_TRUE(throttle.Admit(Report("local search", 0, 200), t0));
-  EXPECT_FALSE(throttle.Admit(Report("local search", 99, 200), t0 + milliseconds(5)));
-  EXPECT_TRUE(throttle.Admit(Report("global search", 0, 20), t0 + milliseconds(6)));
-  EXPECT_FALSE(throttle.Admit(Report("global search", 10, 20), t0 + milliseconds(7)));
-  EXPECT_TRUE(throttle.Admit(Report("local search", 101, 200), t0 + milliseconds(8)));
-  EXPECT_FALSE(throttle.Admit(Report("local search", 120, 200), t0 + milliseconds(9)));
-  EXPECT_TRUE(throttle.Admit(Report("global search", 0, 20), t0 + milliseconds(10)));
+  EXPECT_FALSE(throttle.Admit(Report("local search", 99, 200), t0 + milliseconds(19)));
+  EXPECT_TRUE(throttle.Admit(Report("global search", 0, 20), t0 + milliseconds(20)));
+  EXPECT_FALSE(throttle.Admit(Report("global search", 10, 20), t0 + milliseconds(25)));
+  // Too soon after the last record: dropped, and the next report of the phase is kept instead.
+  EXPECT_FALSE(throttle.Admit(Report("local search", 101, 200), t0 + milliseconds(30)));
+  EXPECT_TRUE(throttle.Admit(Report("local search", 102, 200), t0 + milliseconds(40)));
+  EXPECT_FALSE(throttle.Admit(Report("local search", 120, 200), t0 + milliseconds(100)));
+  EXPECT_TRUE(throttle.Admit(Report("global search", 0, 20), t0 + milliseconds(101)));
 }
 
 }  // namespace
