@@ -3,8 +3,9 @@
 namespace evoslam {
 
 bool ProgressThrottle::Admit(const proto::JobStatus& report, Clock::time_point now) {
-  // A new phase waits a tenth of the interval: enough to show any phase that lasts longer, and a
-  // job that changes phase every few milliseconds still writes at most ten times an interval.
+  // A new phase waits a tenth of the interval: any phase that goes on reporting for longer shows,
+  // and a job that changes phase every few milliseconds still writes at most ten times an
+  // interval.
   const Clock::duration wait = report.phase() != phase_ ? interval_ / 10 : interval_;
   const bool keep = !any_ || now - last_ >= wait || report.done() == report.total();
   if (!keep) return false;

@@ -33,7 +33,8 @@ TEST(ProgressThrottleTest, WithinAPhaseOneReportPerIntervalAndTheLastAreKept) {
 }
 
 // Local search, a global search, a short stretch of local search and another global search, each
-// far shorter than the interval: each phase shows once it has lasted a tenth of the interval.
+// far shorter than the interval: each shows once a tenth of the interval has passed since the last
+// record.
 TEST(ProgressThrottleTest, ANewPhaseShowsAfterATenthOfTheInterval) {
   ProgressThrottle throttle(milliseconds(200));
   const Clock::time_point t0 = Clock::now();
