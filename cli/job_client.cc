@@ -1,6 +1,5 @@
 #include "cli/job_client.h"
 
-#include <fstream>
 #include <memory>
 
 #include "common/io/file_bytes.h"
@@ -54,10 +53,7 @@ void WriteResultFiles(const std::vector<proto::ResultFile>& files,
                       const std::filesystem::path& dir) {
   std::filesystem::create_directories(dir);
   for (const proto::ResultFile& f : files) {
-    const std::filesystem::path path = dir / SafeFileName(f.name());
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    out.write(f.content().data(), static_cast<std::streamsize>(f.content().size()));
-    if (!out) throw Error("cannot write " + path.string());
+    WriteFileBytes(dir / SafeFileName(f.name()), f.content());
   }
 }
 

@@ -358,6 +358,20 @@ TEST_F(CliTest, SlamMapsASimulatedWorld) {
   EXPECT_EQ(evoslam::ReadTrajectory(dir_ / "local" / "trajectory.txt").size(), 120u);
 }
 
+// A disk that fills while the results are written fails the run, naming the file: a run that
+// printed its summary and returned 0 would leave the user with a file that is not there.
+TEST_F(CliTest, AnOutputThatCannotBeWrittenFailsTheRunNamingIt) {
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full to stand for a full disk";
+  fs::create_directory(dir_ / "full");
+  fs::create_symlink("/dev/full", dir_ / "full" / "summary.txt");
+  const Result r = RunCli("slam --max-scans 20 --local-only --out " + Path("full"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("cannot write " + Path("full/summary.txt") + ": No space left"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("wrote "), std::string::npos) << r.output;
+}
+
 // A bad log found by the service is named as the user named it, with its line.
 TEST_F(CliTest, SlamOnAMalformedLogFailsNamingFileAndLine) {
   std::ofstream(Path("broken.clf"))

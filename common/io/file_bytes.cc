@@ -5,6 +5,7 @@
 #include <iterator>
 #include <system_error>
 
+#include "common/io/text_file_writer.h"
 #include "common/util/error.h"
 
 namespace evoslam {
@@ -24,6 +25,12 @@ std::string ReadFileBytes(const std::filesystem::path& path) {
   } catch (const std::ios_base::failure& e) {
     throw InputError(path.string(), 0, std::string("cannot read: ") + e.what());
   }
+}
+
+void WriteFileBytes(const std::filesystem::path& path, std::string_view bytes) {
+  TextFileWriter file(path);
+  file.Write(bytes);
+  file.Close();
 }
 
 }  // namespace evoslam

@@ -33,5 +33,23 @@ TEST(FileBytesTest, ReadsEveryByteAndNamesAFileItCannotRead) {
   }
 }
 
+TEST(FileBytesTest, WritesEveryByteAndNamesAFileItCannotWrite) {
+  testing::ScratchDir dir;
+  const std::string bytes("a\0b\r\nc", 6);
+  WriteFileBytes(dir / "f", "an older, longer content");
+  WriteFileBytes(dir / "f", bytes);
+  EXPECT_EQ(ReadFileBytes(dir / "f"), bytes);
+  try {
+    WriteFileBytes(dir / "no" / "such" / "dir.txt", bytes);
+    FAIL() << "a file in a missing directory cannot be written";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("dir.txt"), std::string::npos) << e.what();
+  }
+  if (!std::filesystem::exists("/dev/full"))
+    GTEST_SKIP() << "no /dev/full to stand for a full disk";
+  // The bytes fit the stream's buffer, so the disk's refusal comes only at the close.
+  EXPECT_THROW(WriteFileBytes("/dev/full", bytes), Error);
+}
+
 }  // namespace
 }  // namespace evoslam

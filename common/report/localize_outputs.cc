@@ -1,9 +1,8 @@
 #include "common/report/localize_outputs.h"
 
-#include <fstream>
-
 #include "common/eval/trajectory_errors.h"
 #include "common/grid/map_io.h"
+#include "common/io/file_bytes.h"
 #include "common/io/trajectory_io.h"
 #include "common/report/map_picture.h"
 #include "common/report/result_files.h"
@@ -56,7 +55,7 @@ std::vector<proto::ResultFile> LocalizeOutputs(const MapModel& map, const Datase
   for (const auto& o : outputs) report.add_outputs(o);
 
   WriteJson(report, dir / "report.json");
-  std::ofstream(dir / "summary.txt") << FormatSummary(report);
+  WriteFileBytes(dir / "summary.txt", FormatSummary(report));
   return ReadResultFiles(dir.path(), outputs);
 }
 

@@ -3,11 +3,11 @@
 #include <google/protobuf/util/json_util.h>
 
 #include <cmath>
-#include <fstream>
 #include <numbers>
 #include <sstream>
 #include <string>
 
+#include "common/io/file_bytes.h"
 #include "common/util/error.h"
 
 namespace evoslam {
@@ -97,9 +97,7 @@ void WriteJson(const google::protobuf::Message& message, const std::filesystem::
   std::string json;
   const auto status = google::protobuf::util::MessageToJsonString(message, &json, options);
   if (!status.ok()) throw Error(path.string() + ": cannot encode JSON: " + status.ToString());
-  std::ofstream out(path);
-  out << json;
-  if (!out.flush()) throw Error(path.string() + ": cannot write file");
+  WriteFileBytes(path, json);
 }
 
 std::string FormatSummary(const proto::LocalizeReport& r) {

@@ -2,13 +2,13 @@
 
 #include <spdlog/spdlog.h>
 
-#include <fstream>
 #include <span>
 #include <string>
 
 #include "common/grid/grid_image.h"
 #include "common/grid/map_io.h"
 #include "common/grid/occupancy_grid.h"
+#include "common/io/file_bytes.h"
 #include "common/io/trajectory_io.h"
 #include "common/report/map_picture.h"
 #include "common/report/result_files.h"
@@ -98,7 +98,7 @@ std::vector<proto::ResultFile> SlamOutputs(const Dataset& dataset, const proto::
       "map.png",        "map_trajectory.png", "report.json", "summary.txt"};
   for (const std::string& o : outputs) report.add_outputs(o);
   WriteJson(report, dir / "report.json");
-  std::ofstream(dir / "summary.txt") << FormatSlamSummary(report);
+  WriteFileBytes(dir / "summary.txt", FormatSlamSummary(report));
   return ReadResultFiles(dir.path(), outputs);
 }
 

@@ -1,8 +1,8 @@
 #include "common/service/dataset_files.h"
 
-#include <fstream>
 #include <utility>
 
+#include "common/io/file_bytes.h"
 #include "common/util/error.h"
 #include "common/util/sha256.h"
 
@@ -12,11 +12,7 @@ namespace {
 void WriteAtomically(const std::filesystem::path& path, std::string_view content) {
   // Written beside and renamed, so a reader never sees half a file, even after a crash.
   const std::filesystem::path partial = path.string() + ".partial";
-  {
-    std::ofstream out(partial, std::ios::binary | std::ios::trunc);
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    if (!out) throw Error("cannot write " + partial.string());
-  }
+  WriteFileBytes(partial, content);
   std::filesystem::rename(partial, path);
 }
 
