@@ -21,8 +21,8 @@ void UploadMap(ServiceClient& client, const std::filesystem::path& map, proto::J
   if (image_path.is_relative()) image_path = map.parent_path() / image_path;
   const proto::DatasetRef image_ref = client.Upload(image_path);
   *spec.mutable_map_image() = image_ref;
-  *spec.mutable_map() = client.UploadBytes(map.filename().string(),
-                                           WithMapYamlImage(yaml, SafeFileName(image_ref.name())));
+  *spec.mutable_map() =
+      client.UploadBytes(map.string(), WithMapYamlImage(yaml, SafeFileName(image_ref.name())));
 }
 
 proto::JobStatus WatchWithProgress(ServiceClient& client, const std::string& job_id) {

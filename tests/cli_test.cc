@@ -177,7 +177,7 @@ TEST_F(CliTest, AMalformedLogFailsTheJobNamingFileAndLine) {
   const Result r = RunCli("localize --map " + Path("sim/world.lines") + " --log " +
                           Path("broken.clf") + " --out " + Path("o"));
   EXPECT_EQ(r.status, 1);
-  EXPECT_NE(r.output.find("broken.clf:3"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(Path("broken.clf") + ":3:"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("evoslam-coordinator"), std::string::npos) << r.output;
 }
 
@@ -378,7 +378,7 @@ TEST_F(CliTest, SlamOnAMalformedLogFailsNamingFileAndLine) {
       << "# header\nODOM 0 0 0 0 0 0 1.0 nohost 0\nFLASER 3 1.0 2.0 x 0 0 0 0 0 0 1.0 nohost 0\n";
   const Result r = RunCli("slam --log " + Path("broken.clf") + " --out " + Path("o"));
   EXPECT_EQ(r.status, 1);
-  EXPECT_NE(r.output.find("broken.clf:3"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(Path("broken.clf") + ":3:"), std::string::npos) << r.output;
 }
 
 TEST_F(CliTest, InfoDescribesTheIntelLog) {

@@ -1175,7 +1175,8 @@ class SlamJobTest : public ServiceTest {
     if (kScaleDown == 1) {
       EXPECT_FALSE(result.loops.empty()) << "no loop: none is searched";
     }
-    const evoslam::NamedRelations relations{"drive.relations",
+    // Named as the service names them: by the path they were uploaded from.
+    const evoslam::NamedRelations relations{DriveRelations().string(),
                                             evoslam::ReadRelations(DriveRelations())};
     fs::create_directories(out);
     for (const proto::ResultFile& f :
@@ -1245,7 +1246,8 @@ TEST_F(SlamJobTest, OnTwoWorkerProcessesItWritesWhatRunRssSlamWritesInProcess) {
   // even when a loaded machine made the coordinator drop and readmit a worker, which starts its
   // task count afresh.
   for (ChildProcess* w : workers) {
-    EXPECT_NE(w->Log().find("fetching dataset drive.clf"), std::string::npos) << w->log_path();
+    EXPECT_NE(w->Log().find("fetching dataset " + DriveLog().string()), std::string::npos)
+        << w->log_path();
   }
 }
 

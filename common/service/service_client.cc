@@ -129,7 +129,7 @@ proto::DatasetRef ServiceClient::UploadBytes(const std::string& name, const std:
 }
 
 proto::DatasetRef ServiceClient::Upload(const std::filesystem::path& file) {
-  return UploadBytes(file.filename().string(), ReadFileBytes(file));
+  return UploadBytes(file.string(), ReadFileBytes(file));
 }
 
 std::string ServiceClient::Submit(const proto::JobSpec& spec) {

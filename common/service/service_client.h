@@ -29,7 +29,8 @@ class ServiceClient {
  public:
   ServiceClient(zmq::context_t& context, ClientOptions options);
 
-  // Uploads a file unless the coordinator already has its bytes, and returns its reference.
+  // Uploads a file unless the coordinator already has its bytes, and returns its reference. The
+  // reference is named by the path as given, so that errors found in the file say which file.
   proto::DatasetRef Upload(const std::filesystem::path& file);
   proto::DatasetRef UploadBytes(const std::string& name, const std::string& content);
   std::string Submit(const proto::JobSpec& spec);
