@@ -268,6 +268,7 @@ TEST_F(CliTest, SlamRefusesBadFlags) {
            {"--param log=x", "--log"},
            {"--min-match-score 0", "match score"},
            {"--param local_min_constraint_ratio=1", "minimum constraint ratio"},
+           {"--param local_odometry_weight=-0.1", "odometry weight"},
            {"--detach", "--coordinator"},
        }) {
     const Result r = RunCli(slam + " " + flag);

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "common/eval/trajectory_errors.h"
+#include "common/io/text_fields.h"
 #include "common/slam/slam_params.h"
 #include "common/util/error.h"
 
@@ -89,6 +90,9 @@ void PrintSearches(std::ostream& s, const proto::SlamParams& p) {
     << " iterations on " << p.local_fitness() << ", map cells " << p.resolution_m() << " m, "
     << (p.local_odometry_pull() > 0 ? "ties to odometry, " : "")
     << (p.local_min_constraint_ratio() > 0 ? "odometry where the scan fixes nothing, " : "")
+    << (p.local_odometry_weight() > 0
+            ? "odometry weighted " + FormatShortest(p.local_odometry_weight()) + ", "
+            : "")
     << (p.local_free_frontier() ? "the seen space's edge free, " : "")
     << (p.local_refine_iterations() > 0 ? "refined below a cell" : "not refined") << "\n";
   s << "  global search: ";

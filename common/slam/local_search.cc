@@ -52,6 +52,8 @@ void ValidateLocalSearchParams(const LocalSearchParams& p) {
     throw Error("local search: the odometry pull must be in [0, 1)");
   if (!(p.min_constraint_ratio >= 0.0 && p.min_constraint_ratio < 1.0))
     throw Error("local search: the minimum constraint ratio must be in [0, 1)");
+  if (!(p.odometry_weight >= 0.0) || !std::isfinite(p.odometry_weight))
+    throw Error("local search: the odometry weight must be finite and not negative");
   if (!std::isfinite(p.frontier_margin))
     throw Error("local search: the frontier margin must be finite");
   ValidateScanRefinementParams(p.refine);
@@ -134,7 +136,10 @@ StepCorrection CorrectStep(const HitCountGrid& map, const LaserScan& scan, const
     result.pose = problem.Corrected(r.best);
     if (!OnFace(r.best, params.max_error)) break;
   }
-  if (params.refine.iterations == 0 && params.min_constraint_ratio == 0.0) return result;
+  if (params.refine.iterations == 0 && params.min_constraint_ratio == 0.0 &&
+      params.odometry_weight == 0.0) {
+    return result;
+  }
   std::vector<Eigen::Vector2d> returns = ReturnPoints(scan);
   if (params.free_frontier) {
     // The interpolated occupancy slopes from a mapped wall's end into the edge beyond it, so a
@@ -152,7 +157,7 @@ StepCorrection CorrectStep(const HitCountGrid& map, const LaserScan& scan, const
     refined.information = ScanInformation(map, returns, result.pose, params.refine.wall_share);
   }
   result.pose = KeepPriorWhereUnconstrained(refined.information, returns, refined.pose, predicted,
-                                            params.min_constraint_ratio);
+                                            params.min_constraint_ratio, params.odometry_weight);
   return result;
 }
 

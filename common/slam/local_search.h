@@ -77,6 +77,12 @@ struct LocalSearchParams {
   // best-constrained direction's (KeepPriorWhereUnconstrained). Our addition; 0: none, as in 002
   // (docs/rss_slam.md).
   double min_constraint_ratio = 0.005;
+  // Where odometry errs less from one step to the next than the scan's fit (a good odometer, a
+  // noisy or short-range laser), the finished step is moved toward the prediction: along a
+  // direction whose information is the share m of the best-constrained direction's, it keeps
+  // m / (m + odometry_weight) of the correction (KeepPriorWhereUnconstrained). Our addition; 0:
+  // none. On real logs, whose odometry is poor, it costs accuracy (docs/rss_slam.md).
+  double odometry_weight = 0.0;
   // Eq. 1 counts a return that lands where the map has no hit as a new cell, whether the rays so
   // far showed that cell empty or never reached it. At the edge of what has been seen (a wall a
   // corner hid, a wall just past the laser's reach, the gaps grazing beams leave along a wall)

@@ -148,25 +148,28 @@ RefinedPose RefineScanPose(const HitCountGrid& map, std::span<const Eigen::Vecto
 
 Pose2 KeepPriorWhereUnconstrained(const Eigen::Matrix3d& information,
                                   std::span<const Eigen::Vector2d> returns, const Pose2& pose,
-                                  const Pose2& prior, double min_ratio) {
+                                  const Pose2& prior, double min_ratio, double prior_weight) {
   const std::optional<Eigen::Vector3d> scale = CoordinateScale(returns);
-  if (!(min_ratio > 0.0) || !scale) return pose;
+  if ((!(min_ratio > 0.0) && !(prior_weight > 0.0)) || !scale) return pose;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(scale->asDiagonal() * information *
                                                              scale->asDiagonal());
   if (eigen.info() != Eigen::Success) return pose;
   const Eigen::Vector3d& values = eigen.eigenvalues();  // ascending
   if (!(values(2) > 0.0)) return prior;
-  // Every direction constrained: the pose as it is, not rebuilt through the eigenvectors.
-  if (values(0) >= min_ratio * values(2)) return pose;
+  // Every direction constrained and the prior weightless: the pose as it is, not rebuilt through
+  // the eigenvectors.
+  if (!(prior_weight > 0.0) && values(0) >= min_ratio * values(2)) return pose;
   // The offset in the scaled coordinates the eigenvectors live in, projected onto the constrained
   // ones (the ascending eigenvalues put the unconstrained first).
   const Eigen::Vector3d offset = scale->cwiseInverse().asDiagonal() *
                                  Eigen::Vector3d(pose.x() - prior.x(), pose.y() - prior.y(),
                                                  WrapAngle(pose.theta() - prior.theta()));
   Eigen::Vector3d kept = Eigen::Vector3d::Zero();
-  for (int k = 1; k < 3; ++k) {
-    if (values(k) >= min_ratio * values(2)) {
-      kept += eigen.eigenvectors().col(k) * eigen.eigenvectors().col(k).dot(offset);
+  for (int k = 0; k < 3; ++k) {
+    if (values(k) >= min_ratio * values(2) && values(k) > 0.0) {
+      const double share = values(k) / values(2);
+      const double weight = share / (share + prior_weight);  // exactly 1 without a prior weight
+      kept += eigen.eigenvectors().col(k) * (eigen.eigenvectors().col(k).dot(offset) * weight);
     }
   }
   kept = scale->asDiagonal() * kept;

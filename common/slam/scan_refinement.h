@@ -66,11 +66,14 @@ RefinedPose RefineScanPose(const HitCountGrid& map, std::span<const Eigen::Vecto
 // a direction whose information (an eigenvalue of `information`, ScanInformation at `pose`, the
 // heading measured by the returns' mean range) is below `min_ratio` times the best-constrained
 // direction's, the prior's value is taken. Down a featureless corridor longer than the laser's
-// reach the scan fixes nothing along the corridor, and a search's pick there is noise. Returns
-// `pose` for min_ratio <= 0 or no returns, and `prior` where the map constrains nothing at all.
+// reach the scan fixes nothing along the corridor, and a search's pick there is noise. With
+// `prior_weight` w > 0, a direction whose information is the share m >= min_ratio of the best's
+// keeps m / (m + w) of the offset: the prior weighs as w times the best direction's information,
+// as when odometry errs less from one step to the next than the scan's fit. Returns `pose` for
+// min_ratio <= 0 and w = 0, or for no returns, and `prior` where the map constrains nothing at all.
 Pose2 KeepPriorWhereUnconstrained(const Eigen::Matrix3d& information,
                                   std::span<const Eigen::Vector2d> returns, const Pose2& pose,
-                                  const Pose2& prior, double min_ratio);
+                                  const Pose2& prior, double min_ratio, double prior_weight = 0.0);
 
 }  // namespace evoslam
 

@@ -272,6 +272,27 @@ TEST(KeepPriorWhereUnconstrainedTest, InARoomThePoseStaysOnABlankMapThePriorIsTa
             prior);
 }
 
+// Returns 2 m out make a heading offset of 1 rad weigh as 2 m, so this information is 1 across
+// x and the heading and 0.25 along y: shares 1, 0.25 and 1 of the best. A prior weighing half
+// the best direction's information keeps 1 / 1.5 of the offset along x and the heading and
+// 0.25 / 0.75 along y; y's share below the minimum ratio takes the prior's y.
+TEST(KeepPriorWhereUnconstrainedTest, APriorWeightKeepsEachDirectionsShareOfTheOffset) {
+  const std::vector<Eigen::Vector2d> returns = {{2.0, 0.0}, {0.0, 2.0}, {-2.0, 0.0}};
+  const Eigen::Matrix3d information = Eigen::Vector3d(1.0, 0.25, 4.0).asDiagonal();
+  const Pose2 prior(1.0, 2.0, 0.5);
+  const Pose2 pose(1.1, 1.8, 0.53);
+  const Pose2 kept = KeepPriorWhereUnconstrained(information, returns, pose, prior, 0.005, 0.5);
+  EXPECT_NEAR(kept.x() - prior.x(), 0.1 / 1.5, 1e-12) << kept;
+  EXPECT_NEAR(kept.y() - prior.y(), -0.2 / 3.0, 1e-12) << kept;
+  EXPECT_NEAR(kept.theta() - prior.theta(), 0.03 / 1.5, 1e-12) << kept;
+  const Pose2 across = KeepPriorWhereUnconstrained(information, returns, pose, prior, 0.3, 0.5);
+  EXPECT_NEAR(across.x() - prior.x(), 0.1 / 1.5, 1e-12) << across;
+  EXPECT_NEAR(across.y(), prior.y(), 1e-12) << across;
+  // No weight and every share above the minimum: the pose as it was, to the bit.
+  EXPECT_EQ(KeepPriorWhereUnconstrained(information, returns, pose, prior, 0.005, 0.0), pose);
+  EXPECT_EQ(KeepPriorWhereUnconstrained(information, returns, pose, prior, 0.0, 0.0), pose);
+}
+
 TEST(ScanRefinementParamsTest, RejectsLimitsThatAreNegativeOrNotFinite) {
   ScanRefinementParams p;
   EXPECT_NO_THROW(ValidateScanRefinementParams(p));

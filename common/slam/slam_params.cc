@@ -45,6 +45,7 @@ RssSlamParams RssSlamParamsFromProto(const proto::SlamParams& p) {
   if (p.has_local_frontier_margin_m()) l.frontier_margin = p.local_frontier_margin_m();
   if (p.has_local_odometry_pull()) l.odometry_pull = p.local_odometry_pull();
   if (p.has_local_min_constraint_ratio()) l.min_constraint_ratio = p.local_min_constraint_ratio();
+  if (p.has_local_odometry_weight()) l.odometry_weight = p.local_odometry_weight();
   if (p.has_local_free_frontier()) l.free_frontier = p.local_free_frontier();
   if (p.has_local_turn_error_per_rad()) l.turn_error_per_rad = p.local_turn_error_per_rad();
   if (p.has_local_carried_turn_error()) l.carried_turn_error = p.local_carried_turn_error();
@@ -118,6 +119,7 @@ proto::SlamParams CompleteSlamParams(const proto::SlamParams& given) {
   p.set_local_frontier_margin_m(l.frontier_margin);
   p.set_local_odometry_pull(l.odometry_pull);
   p.set_local_min_constraint_ratio(l.min_constraint_ratio);
+  p.set_local_odometry_weight(l.odometry_weight);
   p.set_local_free_frontier(l.free_frontier);
   p.set_local_turn_error_per_rad(l.turn_error_per_rad);
   p.set_local_carried_turn_error(l.carried_turn_error);
