@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <string>
@@ -59,7 +60,8 @@ RssSlamResult ResultAtTruth(const Dataset& log, const Eigen::Vector2d& offset = 
                   .loops = {},
                   .global_searches = {},
                   .map = EmptyMapFor(log, LocalSearchParams{}),
-                  .times = {}};
+                  .times = {},
+                  .odometry_stalls = {}};
   for (const LaserScan& s : log.scans) {
     const Pose2 pose(s.true_pose->translation() + offset, s.true_pose->theta());
     r.trajectory.push_back({s.timestamp, pose});
@@ -313,6 +315,29 @@ TEST_F(SlamOutputsTest, SummarySaysWhatRanWhatItFoundAndHowWell) {
     EXPECT_NE(s.find(line), std::string::npos) << line << "\n" << s;
   }
   EXPECT_EQ(s.find("odometry alone: x 0.00 cm"), std::string::npos) << "odometry drifts\n" << s;
+}
+
+TEST_F(SlamOutputsTest, TheReportAndSummaryNameWhereTheOdometryStalled) {
+  RssSlamResult result = ResultAtTruth(log_);
+  result.odometry_stalls = {{.first = 4, .last = 7, .catch_up = Pose2(0.8, 0.1, -0.5)},
+                            {.first = 12, .last = 12, .catch_up = Pose2(0.0, 0.0, 1.5)}};
+  const std::string s =
+      Write(SlamOutputs(log_, Params(), result, std::nullopt, 2)).at("summary.txt");
+  EXPECT_NE(s.find("odometry stalled while the robot moved, filled in by time: scans 4 to 7 "
+                   "(then 0.81 m and -28.6 deg), 12 to 12 (then 0.00 m and 85.9 deg)\n"),
+            std::string::npos)
+      << s;
+  const proto::SlamReport r = ReadReport();
+  ASSERT_EQ(r.odometry_stalls_size(), 2);
+  EXPECT_EQ(r.odometry_stalls(0).first(), 4u);
+  EXPECT_EQ(r.odometry_stalls(0).last(), 7u);
+  EXPECT_DOUBLE_EQ(r.odometry_stalls(0).catch_up_m(), std::hypot(0.8, 0.1));
+  EXPECT_DOUBLE_EQ(r.odometry_stalls(1).catch_up_rad(), 1.5);
+  // Without stalls the summary says nothing of them.
+  EXPECT_EQ(Write(SlamOutputs(log_, Params(), result_, std::nullopt, 2))
+                .at("summary.txt")
+                .find("stalled"),
+            std::string::npos);
 }
 
 TEST_F(SlamOutputsTest, SummarySaysWhenTheSeenSpacesEdgeIsLeftFree) {

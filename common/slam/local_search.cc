@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/optim/evolve.h"
+#include "common/sensor/odometry_stalls.h"
 #include "common/util/error.h"
 #include "common/util/random.h"
 
@@ -205,11 +206,12 @@ StepCorrection CorrectLogStep(const HitCountGrid& map, const Dataset& dataset,
   return CorrectStep(map, scored, predicted, for_step, rng);
 }
 
-LocalSearchResult RunLocalSearch(const Dataset& dataset, const LocalSearchParams& params,
-                                 std::uint64_t seed, HitCountGrid& map,
-                                 const std::function<void(std::size_t, std::size_t)>& progress) {
-  ValidateLocalSearchParams(params);
-  if (dataset.scans.empty()) throw Error(dataset.source + ": the log has no laser scans");
+namespace {
+
+// RunLocalSearch over a log whose odometry stalls are filled.
+LocalSearchResult RunOverFilledLog(const Dataset& dataset, const LocalSearchParams& params,
+                                   std::uint64_t seed, HitCountGrid& map,
+                                   const std::function<void(std::size_t, std::size_t)>& progress) {
   CheckOdometrySteps(dataset);
   const Rng root(seed);
   LocalSearchResult result;
@@ -231,6 +233,20 @@ LocalSearchResult RunLocalSearch(const Dataset& dataset, const LocalSearchParams
     if (progress) progress(i + 1, n);
   }
   return result;
+}
+
+}  // namespace
+
+LocalSearchResult RunLocalSearch(const Dataset& dataset, const LocalSearchParams& params,
+                                 std::uint64_t seed, HitCountGrid& map,
+                                 const std::function<void(std::size_t, std::size_t)>& progress) {
+  ValidateLocalSearchParams(params);
+  if (dataset.scans.empty()) throw Error(dataset.source + ": the log has no laser scans");
+  const std::vector<OdometryStall> stalls = FindOdometryStalls(dataset.scans, params.max_error);
+  if (stalls.empty()) return RunOverFilledLog(dataset, params, seed, map, progress);
+  Dataset filled = dataset;  // a copy of the scans, which only a log that stalled pays for
+  FillOdometryStalls(filled.scans, stalls);
+  return RunOverFilledLog(filled, params, seed, map, progress);
 }
 
 }  // namespace evoslam

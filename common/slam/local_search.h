@@ -144,7 +144,8 @@ struct LocalSearchResult {
 
 // Runs the local search over a whole log, inserting each scan into `map` at its corrected pose.
 // The first scan keeps its odometry pose. Scan i's search draws from random stream i of the
-// seed. `progress(done, total)` after every scan.
+// seed. `progress(done, total)` after every scan. Where the odometry stalls with a catch-up beyond
+// params.max_error (FindOdometryStalls), the steps start from the stall filled in.
 LocalSearchResult RunLocalSearch(
     const Dataset& dataset, const LocalSearchParams& params, std::uint64_t seed, HitCountGrid& map,
     const std::function<void(std::size_t, std::size_t)>& progress = {});

@@ -87,9 +87,11 @@ GlobalSearchProblem MakeGlobalSearchProblem(const Dataset& dataset, const Global
                              task.loop, task.held);
 }
 
-RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, std::uint64_t seed,
-                         const RssSlamRuntime& runtime) {
-  ValidateRssSlamParams(params);
+namespace {
+
+// RunRssSlam over a log whose odometry stalls are filled.
+RssSlamResult RunOverFilledLog(const Dataset& dataset, const RssSlamParams& params,
+                               std::uint64_t seed, const RssSlamRuntime& runtime) {
   if (dataset.scans.empty()) throw Error(dataset.source + ": the log has no laser scans");
   CheckOdometrySteps(dataset);
   const auto run_start = std::chrono::steady_clock::now();
@@ -257,12 +259,30 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
                        .map = std::move(map),
                        .local_evaluations = state.local_evaluations,
                        .global_evaluations = state.global_evaluations,
-                       .times = state.times};
+                       .times = state.times,
+                       .odometry_stalls = {}};
   result.trajectory.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
     result.trajectory.push_back({dataset.scans[i].timestamp, state.poses[i]});
   }
   result.times.total = resumed_total + SecondsSince(run_start);
+  return result;
+}
+
+}  // namespace
+
+RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, std::uint64_t seed,
+                         const RssSlamRuntime& runtime) {
+  ValidateRssSlamParams(params);
+  std::vector<OdometryStall> stalls = FindOdometryStalls(dataset.scans, params.local.max_error);
+  const std::size_t n = ScansToMap(dataset, params);
+  std::erase_if(stalls, [n](const OdometryStall& stall) { return stall.first >= n; });
+  if (stalls.empty()) return RunOverFilledLog(dataset, params, seed, runtime);
+  // A copy of the scans, which only a log whose odometry stalled pays for.
+  Dataset filled = dataset;
+  FillOdometryStalls(filled.scans, stalls);
+  RssSlamResult result = RunOverFilledLog(filled, params, seed, runtime);
+  result.odometry_stalls = std::move(stalls);
   return result;
 }
 

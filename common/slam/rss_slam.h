@@ -13,6 +13,7 @@
 #include "common/grid/hit_count_grid.h"
 #include "common/io/trajectory_io.h"
 #include "common/sensor/dataset.h"
+#include "common/sensor/odometry_stalls.h"
 #include "common/slam/global_search_problem.h"
 #include "common/slam/local_search.h"
 #include "common/slam/loop_detector.h"
@@ -104,6 +105,9 @@ struct RssSlamResult {
   HitCountGrid map;  // every scan at its final pose
   std::size_t local_evaluations = 0, global_evaluations = 0;
   SlamPhaseTimes times;
+  // Where the log's odometry stalled while the robot moved; the searches started from it filled
+  // (FillOdometryStalls), the trajectory's odometry alone is the log's.
+  std::vector<OdometryStall> odometry_stalls;
 };
 
 // What a global search's islands need to be rebuilt elsewhere: the stretch, the poses it
@@ -146,7 +150,8 @@ GlobalSearchProblem MakeGlobalSearchProblem(const Dataset& dataset, const Global
 
 // Runs the whole algorithm over a log. Scan i's local search draws from random stream i of the
 // seed and global search g from stream (scans + g), so the result depends on the inputs and the
-// seed alone, wherever the searches run.
+// seed alone, wherever the searches run. Where the log's odometry stalls with a catch-up beyond
+// the local search's cube (FindOdometryStalls), each step starts from the stall filled in.
 RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, std::uint64_t seed,
                          const RssSlamRuntime& runtime = {});
 

@@ -1,0 +1,86 @@
+#include "common/sensor/odometry_stalls.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "common/util/error.h"
+
+namespace evoslam {
+namespace {
+
+const Eigen::Vector3d kCube(0.1, 0.1, 0.05);  // the local search's default cube
+
+// Scans at `times`, the odometry moving 1.25 m/s along x and turning 0.5 rad/s from heading 3 rad
+// (so that it passes pi).
+std::vector<LaserScan> Drive(const std::vector<double>& times) {
+  std::vector<LaserScan> scans(times.size());
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    scans[i].timestamp = times[i];
+    scans[i].odometry = Pose2(1.25 * times[i], 0.0, 3.0 + 0.5 * times[i]);
+  }
+  return scans;
+}
+
+// Scans [first, last] repeat scan first - 1's odometry, as when the messages were held up.
+void Stall(std::vector<LaserScan>& scans, std::size_t first, std::size_t last) {
+  for (std::size_t k = first; k <= last; ++k) scans[k].odometry = scans[first - 1].odometry;
+}
+
+TEST(FindOdometryStallsTest, FindsRepeatsEndedByACatchUpTheCubeCannotAbsorb) {
+  std::vector<LaserScan> scans = Drive({0.0, 0.2, 0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6});
+  Stall(scans, 3, 6);
+  const std::vector<OdometryStall> stalls = FindOdometryStalls(scans, kCube);
+  ASSERT_EQ(stalls.size(), 1u);
+  EXPECT_EQ(stalls[0].first, 3u);
+  EXPECT_EQ(stalls[0].last, 6u);
+  EXPECT_NEAR(stalls[0].catch_up.theta(), 0.5, 1e-12);  // 1 s of turning at 0.5 rad/s
+  EXPECT_NEAR(stalls[0].catch_up.translation().norm(), 1.25, 1e-12);
+}
+
+TEST(FindOdometryStallsTest, LeavesAStillRobotAndARunAtTheEndAlone) {
+  std::vector<LaserScan> scans(8);
+  for (std::size_t i = 0; i < scans.size(); ++i) scans[i].timestamp = 0.2 * i;
+  // Standing still for scans 0 to 4, then creeping 2 cm and 1 degree a scan; the last two repeat.
+  for (std::size_t i = 5; i < 7; ++i) {
+    scans[i].odometry = scans[i - 1].odometry * Pose2(0.02, 0.0, 0.0175);
+  }
+  scans[7].odometry = scans[6].odometry;
+  EXPECT_TRUE(FindOdometryStalls(scans, kCube).empty());
+  // The same creep counts once the cube is tighter than it.
+  EXPECT_EQ(FindOdometryStalls(scans, Eigen::Vector3d(0.01, 0.01, 0.01)).size(), 1u);
+}
+
+TEST(FillOdometryStallsTest, SpreadsTheCatchUpOverTheStallByTime) {
+  // Uneven scan times, as a logger's are. The drive's odometry changes at a constant rate in
+  // time, so the filled readings are its own.
+  const std::vector<LaserScan> truth = Drive({0.0, 0.21, 0.4, 0.63, 0.8, 1.05, 1.2, 1.41, 1.6});
+  std::vector<LaserScan> scans = truth;
+  Stall(scans, 3, 6);
+  FillOdometryStalls(scans, FindOdometryStalls(scans, kCube));
+  for (std::size_t i = 0; i < scans.size(); ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_NEAR(scans[i].odometry.x(), truth[i].odometry.x(), 1e-12);
+    EXPECT_NEAR(WrapAngle(scans[i].odometry.theta() - truth[i].odometry.theta()), 0.0, 1e-12);
+  }
+}
+
+TEST(FillOdometryStallsTest, SpreadsByScanWhereTheTimestampsDoNotIncrease) {
+  std::vector<LaserScan> scans = Drive({0.0, 0.2, 0.4, 0.6, 0.8});
+  Stall(scans, 2, 3);
+  for (LaserScan& scan : scans) scan.timestamp = 7.0;
+  FillOdometryStalls(scans, FindOdometryStalls(scans, Eigen::Vector3d(0.1, 0.1, 0.05)));
+  EXPECT_NEAR(scans[2].odometry.x(), 0.5, 1e-12);  // a third of the way from 0.25 to 1.0
+  EXPECT_NEAR(scans[3].odometry.x(), 0.75, 1e-12);
+}
+
+TEST(FillOdometryStallsTest, RefusesAStallWithoutAReadingEitherSide) {
+  std::vector<LaserScan> scans = Drive({0.0, 0.2, 0.4});
+  const OdometryStall at_start{0, 1, Pose2()};
+  const OdometryStall at_end{1, 2, Pose2()};
+  EXPECT_THROW(FillOdometryStalls(scans, std::vector<OdometryStall>{at_start}), Error);
+  EXPECT_THROW(FillOdometryStalls(scans, std::vector<OdometryStall>{at_end}), Error);
+}
+
+}  // namespace
+}  // namespace evoslam
