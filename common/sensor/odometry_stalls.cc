@@ -1,6 +1,7 @@
 #include "common/sensor/odometry_stalls.h"
 
 #include <cmath>
+#include <string>
 
 #include "common/util/error.h"
 

@@ -69,7 +69,7 @@ TEST(FillOdometryStallsTest, SpreadsByScanWhereTheTimestampsDoNotIncrease) {
   std::vector<LaserScan> scans = Drive({0.0, 0.2, 0.4, 0.6, 0.8});
   Stall(scans, 2, 3);
   for (LaserScan& scan : scans) scan.timestamp = 7.0;
-  FillOdometryStalls(scans, FindOdometryStalls(scans, Eigen::Vector3d(0.1, 0.1, 0.05)));
+  FillOdometryStalls(scans, FindOdometryStalls(scans, kCube));
   EXPECT_NEAR(scans[2].odometry.x(), 0.5, 1e-12);  // a third of the way from 0.25 to 1.0
   EXPECT_NEAR(scans[3].odometry.x(), 0.75, 1e-12);
 }
