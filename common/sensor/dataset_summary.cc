@@ -1,11 +1,15 @@
 #include "common/sensor/dataset_summary.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <locale>
 #include <numbers>
 #include <span>
 #include <sstream>
+#include <vector>
+
+#include "common/sensor/odometry_stalls.h"
 
 namespace evoslam {
 namespace {
@@ -65,6 +69,15 @@ DatasetSummary Summarize(const Dataset& dataset) {
     s.odometry_path_length = PathLength(std::span<const LaserScan>(dataset.scans),
                                         [](const LaserScan& scan) { return scan.odometry; });
   }
+  const std::vector<OdometryStall> repeats =
+      FindOdometryStalls(dataset.scans, Eigen::Vector3d::Zero());
+  s.odometry_repeats = repeats.size();
+  for (const OdometryStall& run : repeats) {
+    s.longest_odometry_repeat = std::max(s.longest_odometry_repeat, run.last + 1 - run.first);
+    s.largest_catch_up_m = std::max(s.largest_catch_up_m, run.catch_up.translation().norm());
+    s.largest_catch_up_deg =
+        std::max(s.largest_catch_up_deg, std::abs(run.catch_up.theta()) * kDegPerRad);
+  }
   s.has_ground_truth = dataset.has_ground_truth();
   return s;
 }
@@ -84,6 +97,14 @@ std::string FormatSummary(const DatasetSummary& s) {
   out << std::setprecision(3) << "time:              " << s.start_time << " to " << s.end_time
       << " s (" << std::setprecision(1) << s.duration << " s)\n";
   out << std::setprecision(2) << "odometry path:     " << s.odometry_path_length << " m\n";
+  out << "odometry repeats:  ";
+  if (s.odometry_repeats == 0) {
+    out << "none\n";
+  } else {
+    out << s.odometry_repeats << " runs of scans, the longest " << s.longest_odometry_repeat
+        << "; the steps that end them up to " << s.largest_catch_up_m << " m and "
+        << std::setprecision(1) << s.largest_catch_up_deg << " deg\n";
+  }
   out << "ground truth:      " << (s.has_ground_truth ? "yes" : "no") << "\n";
   return out.str();
 }

@@ -23,6 +23,14 @@ struct DatasetSummary {
   double end_time = 0.0;              // latest timestamp of any message
   double duration = 0.0;              // end_time - start_time
   double odometry_path_length = 0.0;  // metres travelled according to odometry
+  // Runs of scans whose odometry repeats the reading before them, ended by a scan whose reading
+  // moves on: a robot standing still, or odometry held up while the laser went on (then the
+  // step that ends the run is large; OdometryStall). Of the steps that end them, the longest and
+  // the largest turn.
+  std::size_t odometry_repeats = 0;
+  std::size_t longest_odometry_repeat = 0;  // scans
+  double largest_catch_up_m = 0.0;
+  double largest_catch_up_deg = 0.0;
   bool has_ground_truth = false;
 };
 

@@ -71,6 +71,25 @@ TEST(DatasetSummaryTest, PrefersOdometryReadingsAndSpansAllMessages) {
   EXPECT_TRUE(s.has_ground_truth);
 }
 
+TEST(DatasetSummaryTest, CountsTheRunsOfRepeatedOdometryAndTheStepsThatEndThem) {
+  Dataset d;
+  for (const Pose2& odometry :
+       {Pose2(0, 0, 0), Pose2(0, 0, 0), Pose2(0, 0, 0), Pose2(0.5, 0, 0.3), Pose2(0.6, 0, 0.3),
+        Pose2(0.6, 0, 0.3), Pose2(0.62, 0, 1.0), Pose2(0.62, 0, 1.0)}) {
+    d.scans.push_back(
+        Scan(10.0 + 0.2 * static_cast<double>(d.scans.size()), 181, kPi / 180, odometry));
+  }
+  const DatasetSummary s = Summarize(d);
+  // Scans 1 and 2, then 5; the repeat at the end has no step after it.
+  EXPECT_EQ(s.odometry_repeats, 2u);
+  EXPECT_EQ(s.longest_odometry_repeat, 2u);
+  EXPECT_NEAR(s.largest_catch_up_m, 0.5, 1e-12);
+  EXPECT_NEAR(s.largest_catch_up_deg, 0.7 * 180.0 / kPi, 1e-9);
+  EXPECT_THAT(FormatSummary(s), HasSubstr("odometry repeats:  2 runs of scans, the longest 2; the "
+                                          "steps that end them up to 0.50 m and 40.1 deg\n"));
+  EXPECT_THAT(FormatSummary(Summarize(Triangle())), HasSubstr("odometry repeats:  none\n"));
+}
+
 TEST(DatasetSummaryTest, EmptyDatasetIsAllZero) {
   const DatasetSummary s = Summarize(Dataset{});
   EXPECT_EQ(s.scans, 0u);
