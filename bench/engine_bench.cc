@@ -6,7 +6,6 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <numbers>
 #include <span>
 #include <string>
 #include <utility>
@@ -17,6 +16,7 @@
 #include "bench/serial_test_function.h"
 #include "common/localization/scan_match_problem.h"
 #include "common/localization/segment_renderer.h"
+#include "common/transform/angle_units.h"
 
 namespace evoslam {
 namespace {
@@ -46,13 +46,12 @@ const Problem& Sphere30() {
 // continual localization would centre it: a 60 cm window, 361 beams, +-30 degrees of heading in
 // 0.5 degree steps.
 const Problem& F3() {
-  constexpr double kDeg = std::numbers::pi / 180;
   const LaserScan& scan = Corridor().log.scans[100];
   const Pose2 center = *Corridor().log.scans[99].true_pose;
   static const SegmentRenderer renderer(
       TemporaryMap(Corridor().world.map, center.translation(), 8.5));
   static const ShiftedScanProblem problem(renderer, FitnessParams{},
-                                          MakeShiftLayout(scan, 30 * kDeg, 0.5 * kDeg),
+                                          MakeShiftLayout(scan, Radians(30.0), Radians(0.5)),
                                           PrepareObservation(scan, 8.0f), 8.0f, center, 0.6);
   return problem;
 }

@@ -3,18 +3,15 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
-#include <numbers>
-
 #include "bench/corridor_scene.h"
 #include "common/io/carmen_reader.h"
 #include "common/localization/localizer.h"
 #include "common/localization/scan_match_problem.h"
 #include "common/localization/segment_renderer.h"
+#include "common/transform/angle_units.h"
 
 namespace evoslam {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180;
 
 // F3 candidates per second: batches of 25 positions in a 60 cm window, 361 beams, +-30 degrees.
 // Arg: threads.
@@ -23,7 +20,7 @@ void BM_F3Candidates(benchmark::State& state) {
   const LaserScan& scan = scene.log.scans[100];
   const Pose2 center = *scan.true_pose;
   const SegmentRenderer renderer(TemporaryMap(scene.world.map, center.translation(), 8.5));
-  const ShiftLayout layout = MakeShiftLayout(scan, 30 * kDeg, 0.5 * kDeg);
+  const ShiftLayout layout = MakeShiftLayout(scan, Radians(30.0), Radians(0.5));
   const ShiftedScanProblem problem(renderer, FitnessParams{}, layout,
                                    PrepareObservation(scan, 8.0f), 8.0f, center, 0.6);
   Rng rng(3);

@@ -23,6 +23,7 @@
 #include "common/localization/localize_params.h"
 #include "common/localization/localizer.h"
 #include "common/service/service_client.h"
+#include "common/transform/angle_units.h"
 #include "common/util/temp_dir.h"
 #include "tests/process_testing.h"
 
@@ -50,7 +51,7 @@ class ServiceBenchJob {
     e.migration.interval = 5;
     // A heading search over the full circle in 0.01 degree steps: over 1 ms per evaluation.
     e.heading_half_window = 3.14159265358979323846;
-    e.heading_step = 0.01 * 3.14159265358979323846 / 180.0;
+    e.heading_step = Radians(0.01);
   }
 
   std::filesystem::path map() const { return dir_ / "sim" / "world.lines"; }

@@ -1,7 +1,6 @@
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
-#include <numbers>
 #include <string>
 
 #include "cli/commands.h"
@@ -9,6 +8,7 @@
 #include "common/io/carmen_reader.h"
 #include "common/io/relations.h"
 #include "common/io/trajectory_io.h"
+#include "common/transform/angle_units.h"
 #include "common/util/error.h"
 
 namespace evoslam::cli {
@@ -34,8 +34,6 @@ std::vector<StampedPose> LoadTrajectory(const std::filesystem::path& path, bool 
   }
   return poses;
 }
-
-double Deg(double rad) { return rad * 180.0 / std::numbers::pi; }
 
 }  // namespace
 
@@ -69,7 +67,7 @@ void AddEvalCommand(CLI::App& app) {
           "absolute: %zu poses, RMS x %.4f m, y %.4f m, heading %.3f deg, "
           "translation %.4f m (max %.4f m); aligned to the truth by a rigid motion, "
           "translation %.4f m\n",
-          a.poses, a.rms_x, a.rms_y, Deg(a.rms_theta), a.rms_translation, a.max_translation,
+          a.poses, a.rms_x, a.rms_y, Degrees(a.rms_theta), a.rms_translation, a.max_translation,
           a.aligned_rms_translation);
       relations = RelationsFromTruth(truth_poses);
     }
@@ -81,8 +79,9 @@ void AddEvalCommand(CLI::App& app) {
     std::printf("relative: %zu relations (%zu skipped)\n", e.relations, e.skipped);
     std::printf("  translation %.4f +- %.4f m   squared %.4f +- %.4f m^2\n", e.translation_mean,
                 e.translation_std, e.translation_sq_mean, e.translation_sq_std);
-    std::printf("  rotation    %.3f +- %.3f deg squared %.3f +- %.3f deg^2\n", Deg(e.rotation_mean),
-                Deg(e.rotation_std), Deg(Deg(e.rotation_sq_mean)), Deg(Deg(e.rotation_sq_std)));
+    std::printf("  rotation    %.3f +- %.3f deg squared %.3f +- %.3f deg^2\n",
+                Degrees(e.rotation_mean), Degrees(e.rotation_std),
+                Degrees(Degrees(e.rotation_sq_mean)), Degrees(Degrees(e.rotation_sq_std)));
   });
 }
 

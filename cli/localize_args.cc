@@ -1,19 +1,13 @@
 #include "cli/localize_args.h"
 
-#include <numbers>
-
 #include "cli/job_client.h"
 #include "cli/option_parsing.h"
 #include "common/engine/presets.h"
 #include "common/localization/localize_params.h"
+#include "common/transform/angle_units.h"
 #include "common/util/error.h"
 
 namespace evoslam::cli {
-namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-}  // namespace
 
 void AddLocalizeJobOptions(CLI::App* cmd, LocalizeArgs& a, bool with_islands) {
   cmd->add_option("--map", a.map, "known map: LineMap text file or map_server .yaml");
@@ -150,8 +144,8 @@ LocalizeOptions OptionsFrom(const LocalizeArgs& a) try {
   e.migration.topology = ParseTopology(a.topology);
   e.migration.policy = ParseMigrationPolicy(a.migration_policy);
   e.window = a.window;
-  e.heading_half_window = a.heading_window * kDeg;
-  e.heading_step = a.heading_step * kDeg;
+  e.heading_half_window = Radians(a.heading_window);
+  e.heading_step = Radians(a.heading_step);
   e.exhaustive_step = a.exhaustive_step;
   ValidateEstimatorParams(e);
   options.use_odometry = a.use_odometry;

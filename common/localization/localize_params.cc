@@ -1,17 +1,15 @@
 #include "common/localization/localize_params.h"
 
-#include <numbers>
 #include <string>
 
 #include "common/engine/engine_proto.h"
 #include "common/optim/differential_evolution.h"
 #include "common/optim/particle_swarm.h"
+#include "common/transform/angle_units.h"
 #include "common/util/error.h"
 
 namespace evoslam {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 std::string OptimizerName(const EstimatorParams& e) {
   switch (e.optimizer) {
@@ -53,8 +51,8 @@ proto::LocalizeParams ToProto(const LocalizeOptions& options) {
     p.set_migration_policy(std::string(MigrationPolicyName(e.migration.policy)));
   }
   p.set_window_m(e.window);
-  p.set_heading_window_deg(e.heading_half_window / kDeg);
-  p.set_heading_step_deg(e.heading_step / kDeg);
+  p.set_heading_window_deg(Degrees(e.heading_half_window));
+  p.set_heading_step_deg(Degrees(e.heading_step));
   p.set_heading_window_rad(e.heading_half_window);
   p.set_heading_step_rad(e.heading_step);
   p.set_exhaustive_step_m(e.exhaustive_step);

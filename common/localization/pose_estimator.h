@@ -16,6 +16,7 @@
 #include "common/localization/range_renderer.h"
 #include "common/localization/scan_fitness.h"
 #include "common/sensor/laser_scan.h"
+#include "common/transform/angle_units.h"
 #include "common/transform/pose2.h"
 #include "common/util/random.h"
 
@@ -48,8 +49,8 @@ struct EstimatorParams {
   std::size_t islands = 4;
   MigrationParams migration;
   double window = 0.6;  // square search window's side, m
-  double heading_half_window = 30.0 * 3.14159265358979323846 / 180.0;  // rad
-  double heading_step = 0.5 * 3.14159265358979323846 / 180.0;          // rad
+  double heading_half_window = Radians(30.0);
+  double heading_step = Radians(0.5);
   double exhaustive_step = 0.01;  // lattice spacing of the reference, m
 };
 

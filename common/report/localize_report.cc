@@ -3,26 +3,21 @@
 #include <google/protobuf/util/json_util.h>
 
 #include <cmath>
-#include <numbers>
 #include <sstream>
 #include <string>
 
 #include "common/io/file_bytes.h"
+#include "common/transform/angle_units.h"
 #include "common/util/error.h"
 
 namespace evoslam {
-namespace {
-
-double Deg(double rad) { return rad * 180.0 / std::numbers::pi; }
-
-}  // namespace
 
 proto::AbsoluteErrors ToProto(const AbsoluteErrors& e) {
   proto::AbsoluteErrors p;
   p.set_poses(static_cast<std::uint32_t>(e.poses));
   p.set_rms_x_m(e.rms_x);
   p.set_rms_y_m(e.rms_y);
-  p.set_rms_theta_deg(Deg(e.rms_theta));
+  p.set_rms_theta_deg(Degrees(e.rms_theta));
   p.set_rms_translation_m(e.rms_translation);
   p.set_max_translation_m(e.max_translation);
   p.set_aligned_rms_translation_m(e.aligned_rms_translation);
@@ -36,12 +31,12 @@ proto::RelationErrors ToProto(const RelationErrors& e, const std::string& source
   p.set_skipped(static_cast<std::uint32_t>(e.skipped));
   p.set_translation_mean_m(e.translation_mean);
   p.set_translation_std_m(e.translation_std);
-  p.set_rotation_mean_deg(Deg(e.rotation_mean));
-  p.set_rotation_std_deg(Deg(e.rotation_std));
+  p.set_rotation_mean_deg(Degrees(e.rotation_mean));
+  p.set_rotation_std_deg(Degrees(e.rotation_std));
   p.set_translation_sq_mean_m2(e.translation_sq_mean);
   p.set_translation_sq_std_m2(e.translation_sq_std);
-  p.set_rotation_sq_mean_deg2(Deg(Deg(e.rotation_sq_mean)));
-  p.set_rotation_sq_std_deg2(Deg(Deg(e.rotation_sq_std)));
+  p.set_rotation_sq_mean_deg2(Degrees(Degrees(e.rotation_sq_mean)));
+  p.set_rotation_sq_std_deg2(Degrees(Degrees(e.rotation_sq_std)));
   return p;
 }
 

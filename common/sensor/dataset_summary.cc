@@ -4,17 +4,15 @@
 #include <cmath>
 #include <iomanip>
 #include <locale>
-#include <numbers>
 #include <span>
 #include <sstream>
 #include <vector>
 
 #include "common/sensor/odometry_stalls.h"
+#include "common/transform/angle_units.h"
 
 namespace evoslam {
 namespace {
-
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 
 template <typename Item, typename PoseOf>
 double PathLength(std::span<const Item> items, PoseOf pose_of) {
@@ -46,11 +44,11 @@ DatasetSummary Summarize(const Dataset& dataset) {
   s.odometry_readings = dataset.odometry.size();
   if (!dataset.scans.empty()) {
     s.min_beams = s.max_beams = dataset.scans.front().size();
-    s.angle_increment_deg = dataset.scans.front().angle_increment * kDegPerRad;
+    s.angle_increment_deg = Degrees(dataset.scans.front().angle_increment);
     for (const LaserScan& scan : dataset.scans) {
       s.min_beams = std::min(s.min_beams, scan.size());
       s.max_beams = std::max(s.max_beams, scan.size());
-      s.field_of_view_deg = std::max(s.field_of_view_deg, scan.field_of_view() * kDegPerRad);
+      s.field_of_view_deg = std::max(s.field_of_view_deg, Degrees(scan.field_of_view()));
       s.max_range = std::max(s.max_range, scan.range_max);
     }
   }
@@ -76,7 +74,7 @@ DatasetSummary Summarize(const Dataset& dataset) {
     s.longest_odometry_repeat = std::max(s.longest_odometry_repeat, run.last + 1 - run.first);
     s.largest_catch_up_m = std::max(s.largest_catch_up_m, run.catch_up.translation().norm());
     s.largest_catch_up_deg =
-        std::max(s.largest_catch_up_deg, std::abs(run.catch_up.theta()) * kDegPerRad);
+        std::max(s.largest_catch_up_deg, Degrees(std::abs(run.catch_up.theta())));
   }
   s.has_ground_truth = dataset.has_ground_truth();
   return s;

@@ -1,18 +1,13 @@
 #include "common/sim/laser_model.h"
 
 #include <cmath>
-#include <numbers>
 
 #include <fmt/format.h>
 
+#include "common/transform/angle_units.h"
 #include "common/util/error.h"
 
 namespace evoslam {
-namespace {
-
-double Radians(double degrees) { return degrees * (std::numbers::pi / 180.0); }
-
-}  // namespace
 
 double LaserModel::angle_min() const { return -0.5 * Radians(field_of_view_deg); }
 

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <string>
 
 #include <fmt/format.h>
 
 #include "common/mapping/segment_geometry.h"
+#include "common/transform/angle_units.h"
 #include "common/util/error.h"
 
 namespace evoslam {
@@ -15,7 +15,7 @@ namespace {
 
 // Turns sharper than this (radians) are made on the spot at the waypoint: an arc tangent to
 // two nearly opposite legs would have to start far before the corner.
-constexpr double kReversal = 179.0 * std::numbers::pi / 180.0;
+constexpr double kReversal = Radians(179.0);
 
 // A straight stretch (radius < 0) or an arc; an arc of radius 0 is a turn on the spot.
 struct Piece {
