@@ -2,7 +2,9 @@
 
 #include <chrono>
 #include <cmath>
+#include <vector>
 
+#include "common/sensor/odometry_stalls.h"
 #include "common/util/error.h"
 
 namespace evoslam {
@@ -35,6 +37,9 @@ std::unique_ptr<RangeRenderer> WindowRenderer(const MapModel& map, const Pose2& 
                            max_range + std::sqrt(0.5) * options.estimator.window);
 }
 
+LocalizeResult LocalizeOver(const MapModel& map, const Dataset& dataset,
+                            const LocalizeOptions& options, const LocalizeRuntime& runtime);
+
 }  // namespace
 
 ScanProblem MakeScanProblem(const MapModel& map, const Dataset& dataset, std::size_t scan,
@@ -54,9 +59,33 @@ LocalizeResult Localize(const MapModel& map, const Dataset& dataset, const Local
   return Localize(map, dataset, options, runtime);
 }
 
+std::vector<OdometryStall> OdometryStallsOutsideTheWindow(const Dataset& dataset,
+                                                          const LocalizeOptions& options) {
+  if (!options.use_odometry) return {};
+  const double half = 0.5 * options.estimator.window;
+  std::vector<OdometryStall> stalls =
+      FindOdometryStalls(dataset.scans, {half, half, options.estimator.heading_half_window});
+  const std::size_t n = ScansToLocalize(dataset, options);
+  std::erase_if(stalls, [n](const OdometryStall& stall) { return stall.first >= n; });
+  return stalls;
+}
+
 LocalizeResult Localize(const MapModel& map, const Dataset& dataset, const LocalizeOptions& options,
                         const LocalizeRuntime& runtime) {
   ValidateEstimatorParams(options.estimator);
+  std::vector<OdometryStall> stalls = OdometryStallsOutsideTheWindow(dataset, options);
+  if (stalls.empty()) return LocalizeOver(map, dataset, options, runtime);
+  Dataset filled = dataset;  // a copy of the scans, which only a log that stalled pays for
+  FillOdometryStalls(filled.scans, stalls);
+  LocalizeResult result = LocalizeOver(map, filled, options, runtime);
+  result.odometry_stalls = std::move(stalls);
+  return result;
+}
+
+namespace {
+
+LocalizeResult LocalizeOver(const MapModel& map, const Dataset& dataset,
+                            const LocalizeOptions& options, const LocalizeRuntime& runtime) {
   if (dataset.scans.empty()) throw Error(dataset.source + ": the log has no laser scans");
   if (options.max_range < 0.0) throw Error("max range must not be negative");
   const auto start_time = std::chrono::steady_clock::now();
@@ -106,5 +135,7 @@ LocalizeResult Localize(const MapModel& map, const Dataset& dataset, const Local
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   return std::move(result);
 }
+
+}  // namespace
 
 }  // namespace evoslam

@@ -11,6 +11,7 @@
 #include "common/localization/map_model.h"
 #include "common/localization/pose_estimator.h"
 #include "common/sensor/dataset.h"
+#include "common/sensor/odometry_stalls.h"
 
 namespace evoslam {
 
@@ -30,6 +31,8 @@ struct LocalizeResult {
   std::vector<double> fitness;          // the best fitness of each scan
   std::size_t evaluations = 0;
   double seconds = 0.0;
+  // The odometry stalls filled in before the search (OdometryStallsOutsideTheWindow).
+  std::vector<OdometryStall> odometry_stalls;
 };
 
 // A localization between two scans, or part-way through a scan's island search: enough to
@@ -74,9 +77,16 @@ struct ScanProblem {
 ScanProblem MakeScanProblem(const MapModel& map, const Dataset& dataset, std::size_t scan,
                             const Pose2& center, const LocalizeOptions& options);
 
+// The runs of repeated odometry, among the scans localized, whose catch-up a window centred on the
+// odometry's step could not follow (FindOdometryStalls with the window's half-sides); none unless
+// options.use_odometry.
+std::vector<OdometryStall> OdometryStallsOutsideTheWindow(const Dataset& dataset,
+                                                          const LocalizeOptions& options);
+
 // Continual localization in a known map: each scan is matched in a window around the previous
-// estimate. Scan i uses random stream i of the seed, so its result depends on the seed and the
-// inputs alone, wherever its search runs.
+// estimate, or around the odometry's prediction with options.use_odometry; the odometry of the
+// stalls above is then filled in first (FillOdometryStalls). Scan i uses random stream i of the
+// seed, so its result depends on the seed and the inputs alone, wherever its search runs.
 LocalizeResult Localize(const MapModel& map, const Dataset& dataset, const LocalizeOptions& options,
                         const LocalizeRuntime& runtime = {});
 LocalizeResult Localize(const MapModel& map, const Dataset& dataset, const LocalizeOptions& options,

@@ -100,6 +100,38 @@ TEST(LocalizeRuntimeTest, SearchesRunElsewhereGiveTheSameBits) {
   EXPECT_GT(chunks, 4u * 10u);
 }
 
+// The odometry of a walk through the box room, exact, stalls over scans 3 to 6: they repeat scan
+// 2's reading and scan 7's carries the five steps since. A window smaller than one step, centred
+// on the odometry's step, follows the walk only once the stall is spread over the scans it held.
+TEST(LocalizeTest, AnOdometryStallIsFilledInBeforeTheWindowsAreCentredOnIt) {
+  const MapModel map(testing::BoxRoom());
+  Dataset d = testing::WalkThroughBoxRoom(10);
+  for (LaserScan& scan : d.scans) scan.odometry = *scan.true_pose;
+  for (std::size_t i = 3; i <= 6; ++i) d.scans[i].odometry = d.scans[2].odometry;
+  LocalizeOptions options;
+  options.estimator.window = 0.04;  // smaller than the 5.8 cm step
+  options.use_odometry = true;
+
+  const LocalizeResult r = Localize(map, d, options);
+  ASSERT_EQ(r.odometry_stalls.size(), 1u);
+  EXPECT_EQ(r.odometry_stalls[0].first, 3u);
+  EXPECT_EQ(r.odometry_stalls[0].last, 6u);
+  for (std::size_t i = 0; i < d.scans.size(); ++i) {
+    EXPECT_LT((r.trajectory[i].pose.translation() - d.scans[i].true_pose->translation()).norm(),
+              0.01)
+        << "scan " << i;
+  }
+
+  // The run held to its first scans leaves out the stall after them.
+  options.max_scans = 3;
+  EXPECT_TRUE(Localize(map, d, options).odometry_stalls.empty());
+
+  // Windows centred on the previous estimate do not use odometry, so nothing is filled.
+  options.max_scans = 0;
+  options.use_odometry = false;
+  EXPECT_TRUE(OdometryStallsOutsideTheWindow(d, options).empty());
+}
+
 TEST(LocalizeParamsTest, TheWireFormRunsTheSameJob) {
   const MapModel map(testing::BoxRoom());
   const Dataset d = testing::WalkThroughBoxRoom(3);

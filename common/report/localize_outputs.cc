@@ -38,6 +38,9 @@ std::vector<proto::ResultFile> LocalizeOutputs(const MapModel& map, const Datase
   double fitness_sum = 0.0;
   for (double f : result.fitness) fitness_sum += f;
   report.set_mean_fitness(result.fitness.empty() ? 0.0 : fitness_sum / result.fitness.size());
+  for (const OdometryStall& stall : result.odometry_stalls) {
+    *report.add_odometry_stalls() = ToProto(stall);
+  }
 
   const std::vector<StampedPose> truth = ScanTruth(dataset, result.trajectory.size());
   if (!truth.empty()) {

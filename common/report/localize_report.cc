@@ -3,6 +3,7 @@
 #include <google/protobuf/util/json_util.h>
 
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 #include <string>
 
@@ -37,6 +38,15 @@ proto::RelationErrors ToProto(const RelationErrors& e, const std::string& source
   p.set_translation_sq_std_m2(e.translation_sq_std);
   p.set_rotation_sq_mean_deg2(Degrees(Degrees(e.rotation_sq_mean)));
   p.set_rotation_sq_std_deg2(Degrees(Degrees(e.rotation_sq_std)));
+  return p;
+}
+
+proto::OdometryStallRecord ToProto(const OdometryStall& stall) {
+  proto::OdometryStallRecord p;
+  p.set_first(static_cast<std::uint32_t>(stall.first));
+  p.set_last(static_cast<std::uint32_t>(stall.last));
+  p.set_catch_up_m(stall.catch_up.translation().norm());
+  p.set_catch_up_rad(stall.catch_up.theta());
   return p;
 }
 
@@ -95,6 +105,23 @@ void WriteJson(const google::protobuf::Message& message, const std::filesystem::
   WriteFileBytes(path, json);
 }
 
+std::string FormatOdometryStalls(
+    const google::protobuf::RepeatedPtrField<proto::OdometryStallRecord>& stalls) {
+  if (stalls.empty()) return {};
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s << "  odometry stalled while the robot moved, filled in by time: scans ";
+  const char* separator = "";
+  for (const auto& stall : stalls) {
+    s << separator << stall.first() << " to " << stall.last() << " (then " << std::setprecision(2)
+      << stall.catch_up_m() << " m and " << std::setprecision(1) << Degrees(stall.catch_up_rad())
+      << " deg)";
+    separator = ", ";
+  }
+  s << "\n";
+  return s.str();
+}
+
 std::string FormatSummary(const proto::LocalizeReport& r) {
   std::ostringstream s;
   s.setf(std::ios::fixed);
@@ -122,6 +149,7 @@ std::string FormatSummary(const proto::LocalizeReport& r) {
     s << "  relative error (" << e.source() << ", " << e.relations()
       << " relations): " << FormatRelationErrors(e) << "\n";
   }
+  s << FormatOdometryStalls(r.odometry_stalls());
   return s.str();
 }
 

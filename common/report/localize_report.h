@@ -11,6 +11,7 @@
 #include "common/io/relations.h"
 #include "common/io/trajectory_io.h"
 #include "common/sensor/dataset.h"
+#include "common/sensor/odometry_stalls.h"
 #include "evoslam/localize.pb.h"
 
 namespace evoslam {
@@ -25,6 +26,7 @@ struct NamedRelations {
 
 proto::AbsoluteErrors ToProto(const AbsoluteErrors& errors);
 proto::RelationErrors ToProto(const RelationErrors& errors, const std::string& source);
+proto::OdometryStallRecord ToProto(const OdometryStall& stall);
 
 // The true poses of the log's first `scans` scans, stamped with the scans' timestamps; scans
 // without one are left out.
@@ -41,6 +43,11 @@ std::optional<proto::RelationErrors> RelationErrorsReport(
 std::string FormatAbsoluteErrors(const proto::AbsoluteErrors& errors);
 // "0.0114 +- 0.0073 m, 0.500 +- 0.300 deg", as the summaries print it.
 std::string FormatRelationErrors(const proto::RelationErrors& errors);
+
+// "  odometry stalled while the robot moved, filled in by time: scans 321 to 324 (then 0.85 m and
+// 49.7 deg), ...\n", as the summaries print it; nothing when there were none.
+std::string FormatOdometryStalls(
+    const google::protobuf::RepeatedPtrField<proto::OdometryStallRecord>& stalls);
 
 // Writes a message as indented JSON (all fields, including zeros); throws Error on failure.
 void WriteJson(const google::protobuf::Message& message, const std::filesystem::path& path);

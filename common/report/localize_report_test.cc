@@ -79,6 +79,21 @@ TEST(LocalizeReportTest, SummaryShowsErrorsInCentimetresAndDegrees) {
       << FormatSummary(r);
 }
 
+TEST(LocalizeReportTest, SummaryNamesTheOdometryStallsFilledIn) {
+  proto::LocalizeReport r = SampleReport();
+  EXPECT_EQ(FormatSummary(r).find("stalled"), std::string::npos) << "none, no line";
+  *r.add_odometry_stalls() = ToProto(OdometryStall{3, 6, Pose2(0.3, -0.4, -0.25)});
+  EXPECT_EQ(r.odometry_stalls(0).first(), 3u);
+  EXPECT_EQ(r.odometry_stalls(0).last(), 6u);
+  EXPECT_DOUBLE_EQ(r.odometry_stalls(0).catch_up_m(), 0.5);
+  EXPECT_DOUBLE_EQ(r.odometry_stalls(0).catch_up_rad(), -0.25);
+  const std::string s = FormatSummary(r);
+  EXPECT_NE(s.find("  odometry stalled while the robot moved, filled in by time: scans 3 to 6 "
+                   "(then 0.50 m and -14.3 deg)\n"),
+            std::string::npos)
+      << s;
+}
+
 TEST(LocalizeReportTest, JsonRoundTripsWithZeroFieldsSpelledOut) {
   const testing::ScratchDir dir;
   const auto path = dir / "report.json";

@@ -1,8 +1,6 @@
 #include "common/report/slam_report.h"
 
 #include <cstdint>
-#include <iomanip>
-#include <numbers>
 #include <sstream>
 
 #include "common/eval/trajectory_errors.h"
@@ -65,11 +63,7 @@ proto::SlamReport MakeSlamReport(const Dataset& dataset, const proto::SlamParams
   report.set_threads(threads);
   for (const LoopClosure& loop : result.loops) *report.add_loops() = ToProto(loop);
   for (const OdometryStall& stall : result.odometry_stalls) {
-    proto::OdometryStallRecord& record = *report.add_odometry_stalls();
-    record.set_first(static_cast<std::uint32_t>(stall.first));
-    record.set_last(static_cast<std::uint32_t>(stall.last));
-    record.set_catch_up_m(stall.catch_up.translation().norm());
-    record.set_catch_up_rad(stall.catch_up.theta());
+    *report.add_odometry_stalls() = ToProto(stall);
   }
   for (const GlobalSearchRecord& g : result.global_searches) {
     *report.add_global_searches() = ToProto(g);
@@ -120,19 +114,6 @@ void PrintSearches(std::ostream& s, const proto::SlamParams& p) {
     << " generations\n";
 }
 
-void PrintStalls(std::ostream& s, const proto::SlamReport& r) {
-  if (r.odometry_stalls().empty()) return;
-  s << "  odometry stalled while the robot moved, filled in by time: scans ";
-  const char* separator = "";
-  for (const auto& stall : r.odometry_stalls()) {
-    s << separator << stall.first() << " to " << stall.last() << " (then " << stall.catch_up_m()
-      << " m and " << std::setprecision(1) << stall.catch_up_rad() * 180.0 / std::numbers::pi
-      << " deg)" << std::setprecision(2);
-    separator = ", ";
-  }
-  s << "\n";
-}
-
 void PrintLoops(std::ostream& s, const proto::SlamReport& r) {
   s << "  loops found: " << r.loops_size();
   const char* separator = " (scan ";
@@ -163,7 +144,7 @@ std::string FormatSlamSummary(const proto::SlamReport& r) {
     << " scans/s, " << r.threads() << " threads)\n";
   s << "  fitness evaluations: " << r.local_evaluations() << " local, " << r.global_evaluations()
     << " global\n";
-  PrintStalls(s, r);
+  s << FormatOdometryStalls(r.odometry_stalls());
   PrintLoops(s, r);
   if (r.map_resolution_m() > p.resolution_m()) {
     s << "  map written at " << r.map_resolution_m() << " m per cell, not " << p.resolution_m()
