@@ -21,6 +21,12 @@ void AddLocalizeJobOptions(CLI::App* cmd, LocalizeArgs& a, bool with_islands) {
   cmd->add_flag("--use-odometry", a.use_odometry, "centre the window on the odometry prediction");
   cmd->add_option("--fitness", a.fitness, "f3 (L1 sum) or f2 (beams within tolerance)")
       ->check(CLI::IsMember({"f3", "f2"}));
+  cmd->add_option("--f2-base", a.f2_base,
+                  "F2: the tolerance at range 0, m; a grid map's cell is worth a try")
+      ->check(NonNegativeNumber());
+  cmd->add_option("--f2-slope", a.f2_slope,
+                  "F2: the tolerance's growth per metre of simulated plus observed range")
+      ->check(NonNegativeNumber());
   cmd->add_option("--estimator", a.estimator, "2d (heading by brute force) or 3d")
       ->check(CLI::IsMember({"2d", "3d"}));
   cmd->add_option("--optimizer", a.optimizer,
@@ -103,6 +109,8 @@ LocalizeOptions OptionsFrom(const LocalizeArgs& a) try {
   LocalizeOptions options;
   EstimatorParams& e = options.estimator;
   e.fitness.kind = ParseFitnessKind(a.fitness);
+  e.fitness.f2_base = a.f2_base;
+  e.fitness.f2_slope = a.f2_slope;
   e.estimator = ParseEstimatorKind(a.estimator);
   // A preset supplies the algorithm and its settings; options given explicitly override them.
   const bool preset = !a.preset.empty();

@@ -85,6 +85,14 @@ TEST_F(CliTest, SimulateThenLocalizeWritesEveryOutput) {
   sa << a.rdbuf();
   sb << b.rdbuf();
   EXPECT_EQ(sa.str(), sb.str());
+
+  // F2's tolerance flags reach the job and its report.
+  const Result f2 = RunCli("localize --map " + Path("sim/world.lines") + " --log " +
+                           Path("sim/log.clf") + " --fitness f2 --f2-base 0.05 --f2-slope 0.002" +
+                           " --max-scans 5 --out " + Path("f2"));
+  ASSERT_EQ(f2.status, 0) << f2.output;
+  EXPECT_NE(f2.output.find("f2 (within 0.050 m + 0.0020 x the two ranges)"), std::string::npos)
+      << f2.output;
 }
 
 std::string ReadAll(const fs::path& path) {
@@ -189,6 +197,9 @@ TEST_F(CliTest, BadFlagsAreRefused) {
   EXPECT_EQ(optimizer.status, 2);
   EXPECT_NE(optimizer.output.find("--optimizer"), std::string::npos) << optimizer.output;
   EXPECT_EQ(RunCli(localize + " --CR 1.5").status, 2);
+  const Result f2_base = RunCli(localize + " --f2-base -0.01");
+  EXPECT_EQ(f2_base.status, 2);
+  EXPECT_NE(f2_base.output.find("--f2-base"), std::string::npos) << f2_base.output;
   EXPECT_EQ(RunCli(localize + " --bogus").status, 2);
   const Result strategy = RunCli(localize + " --strategy rand3exp");
   EXPECT_EQ(strategy.status, 2);

@@ -29,6 +29,8 @@ proto::LocalizeParams ToProto(const LocalizeOptions& options) {
   const EstimatorParams& e = options.estimator;
   proto::LocalizeParams p;
   p.set_fitness(std::string(FitnessKindName(e.fitness.kind)));
+  p.set_f2_base_m(e.fitness.f2_base);
+  p.set_f2_slope(e.fitness.f2_slope);
   p.set_estimator(std::string(EstimatorKindName(e.estimator)));
   p.set_optimizer(OptimizerName(e));
   p.set_strategy(std::string(DeStrategyName(e.algorithm.de.strategy)));
@@ -71,6 +73,8 @@ LocalizeOptions LocalizeOptionsFromProto(const proto::LocalizeParams& p) {
   LocalizeOptions options;
   EstimatorParams& e = options.estimator;
   e.fitness.kind = ParseFitnessKind(p.fitness());
+  if (p.has_f2_base_m()) e.fitness.f2_base = p.f2_base_m();
+  if (p.has_f2_slope()) e.fitness.f2_slope = p.f2_slope();
   e.estimator = ParseEstimatorKind(p.estimator());
   e.optimizer = ParseOptimizer(p.optimizer(), e.algorithm);
   if (!p.has_algorithm()) throw Error("localize parameters: the algorithm settings are missing");

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <vector>
 
 #include "common/engine/engine_proto.h"
@@ -143,11 +144,14 @@ TEST(LocalizeParamsTest, TheWireFormRunsTheSameJob) {
     options.estimator.exhaustive_step = 0.05;
     options.start = Pose2(2.5, 2.0, 0.55);
     options.max_range = 7.5;
+    options.estimator.fitness = {.kind = FitnessKind::kF2, .f2_base = 0.03, .f2_slope = 0.02};
     proto::LocalizeParams wire;
     ASSERT_TRUE(wire.ParseFromString(ToProto(options).SerializeAsString()));
     const LocalizeOptions back = LocalizeOptionsFromProto(wire);
     EXPECT_EQ(back.estimator.heading_half_window, 0.3);
     EXPECT_EQ(back.start->x(), 2.5);
+    EXPECT_EQ(back.estimator.fitness.f2_base, 0.03);
+    EXPECT_EQ(back.estimator.fitness.f2_slope, 0.02);
     ExpectSameTrajectory(Localize(map, d, back), Localize(map, d, options));
   }
 }
@@ -168,6 +172,22 @@ TEST(LocalizeParamsTest, RefusesParametersThatCannotWork) {
   p = ToProto(LocalizeOptions{});
   p.set_max_range_m(-2.0);
   EXPECT_THROW(LocalizeOptionsFromProto(p), Error);
+  p = ToProto(LocalizeOptions{});
+  p.set_f2_base_m(-0.01);
+  EXPECT_THROW(LocalizeOptionsFromProto(p), Error);
+  p = ToProto(LocalizeOptions{});
+  p.set_f2_slope(std::numeric_limits<double>::infinity());
+  EXPECT_THROW(LocalizeOptionsFromProto(p), Error);
+}
+
+// A job whose parameters predate F2's tolerance fields gets the papers' tolerance.
+TEST(LocalizeParamsTest, AnUnsetF2ToleranceIsThePapers) {
+  proto::LocalizeParams p = ToProto(LocalizeOptions{});
+  p.clear_f2_base_m();
+  p.clear_f2_slope();
+  const LocalizeOptions back = LocalizeOptionsFromProto(p);
+  EXPECT_EQ(back.estimator.fitness.f2_base, FitnessParams{}.f2_base);
+  EXPECT_EQ(back.estimator.fitness.f2_slope, FitnessParams{}.f2_slope);
 }
 
 }  // namespace

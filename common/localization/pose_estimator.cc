@@ -60,6 +60,12 @@ IslandModelParams IslandModelOf(const EstimatorParams& params) {
 
 void ValidateEstimatorParams(const EstimatorParams& params) {
   if (!(params.window > 0.0)) throw Error("search window must be positive");
+  if (!(params.fitness.f2_base >= 0.0) || !std::isfinite(params.fitness.f2_base)) {
+    throw Error("F2 tolerance base must be a finite length >= 0");
+  }
+  if (!(params.fitness.f2_slope >= 0.0) || !std::isfinite(params.fitness.f2_slope)) {
+    throw Error("F2 tolerance slope must be finite and >= 0");
+  }
   if (!(params.heading_half_window >= 0.0) || params.heading_half_window > 3.14159265358979323846) {
     throw Error("heading window must be between 0 and 180 degrees");
   }

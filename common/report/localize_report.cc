@@ -128,7 +128,12 @@ std::string FormatSummary(const proto::LocalizeReport& r) {
   const auto& p = r.params();
   s.precision(2);
   s << "localized " << r.scans() << " scans of " << p.log() << " in " << p.map() << "\n";
-  s << "  " << p.fitness() << ", " << p.estimator() << " estimator, " << p.optimizer();
+  s << "  " << p.fitness();
+  if (p.fitness() == "f2") {
+    s << " (within " << std::setprecision(3) << p.f2_base_m() << " m + " << std::setprecision(4)
+      << p.f2_slope() << " x the two ranges)" << std::setprecision(2);
+  }
+  s << ", " << p.estimator() << " estimator, " << p.optimizer();
   if (p.optimizer() == "island") {
     s << " of " << p.islands() << " " << p.island_algorithm() << " islands (" << p.topology()
       << ", " << p.migrants() << " migrants every " << p.migration_interval() << " generations)";

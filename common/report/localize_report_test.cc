@@ -79,6 +79,19 @@ TEST(LocalizeReportTest, SummaryShowsErrorsInCentimetresAndDegrees) {
       << FormatSummary(r);
 }
 
+TEST(LocalizeReportTest, SummaryGivesF2sTolerance) {
+  proto::LocalizeReport r = SampleReport();
+  r.mutable_params()->set_f2_base_m(0.06);
+  r.mutable_params()->set_f2_slope(59.0 / 6000.0);
+  EXPECT_EQ(FormatSummary(r).find("within"), std::string::npos) << "F3 has no tolerance";
+  r.mutable_params()->set_fitness("f2");
+  const std::string s = FormatSummary(r);
+  EXPECT_NE(s.find("  f2 (within 0.060 m + 0.0098 x the two ranges), 2d estimator, de rand1exp "
+                   "(population 25, generations 25), window 0.60 m"),
+            std::string::npos)
+      << s;
+}
+
 TEST(LocalizeReportTest, SummaryNamesTheOdometryStallsFilledIn) {
   proto::LocalizeReport r = SampleReport();
   EXPECT_EQ(FormatSummary(r).find("stalled"), std::string::npos) << "none, no line";
