@@ -18,7 +18,12 @@ void PrepareLocalize(proto::JobSpec& spec) {
   if (spec.max_evaluations() != 0) {
     throw Error("a localization's budget is per scan: set its generations, not max_evaluations");
   }
-  LocalizeOptionsFromProto(spec.localize());  // throws Error naming a bad parameter
+  // The stored spec, and so the report, says what runs: parameters written before F2's
+  // tolerance fields get the papers' tolerance.
+  proto::LocalizeParams& localize = *spec.mutable_localize();
+  if (!localize.has_f2_base_m()) localize.set_f2_base_m(FitnessParams{}.f2_base);
+  if (!localize.has_f2_slope()) localize.set_f2_slope(FitnessParams{}.f2_slope);
+  LocalizeOptionsFromProto(localize);  // throws Error naming a bad parameter
 }
 
 void PrepareSlam(proto::JobSpec& spec) {

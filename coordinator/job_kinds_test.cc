@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "common/localization/localize_params.h"
 #include "common/util/error.h"
 
 namespace evoslam {
@@ -52,6 +53,22 @@ TEST(JobKindsTest, ASlamJobTakesTheSpecsSeedIslandsAndLogName) {
   EXPECT_EQ(spec.slam().seed(), 5u);
   EXPECT_FALSE(spec.slam().has_islands());
   EXPECT_EQ(spec.slam().log(), "logs/intel.gfs.log");
+}
+
+TEST(JobKindsTest, ALocalizationWithoutF2sToleranceGetsThePapersInItsSpec) {
+  proto::JobSpec spec;
+  spec.set_kind(proto::JOB_KIND_LOCALIZE);
+  *spec.mutable_localize() = ToProto(LocalizeOptions{});
+  spec.mutable_localize()->clear_f2_base_m();
+  spec.mutable_localize()->clear_f2_slope();
+  PrepareJobSpec(spec);
+  EXPECT_EQ(spec.localize().f2_base_m(), FitnessParams{}.f2_base);
+  EXPECT_EQ(spec.localize().f2_slope(), FitnessParams{}.f2_slope);
+
+  // Given, they stay.
+  spec.mutable_localize()->set_f2_base_m(0.06);
+  PrepareJobSpec(spec);
+  EXPECT_EQ(spec.localize().f2_base_m(), 0.06);
 }
 
 TEST(JobKindsTest, ABadSlamJobIsRefusedSayingWhatIsWrong) {

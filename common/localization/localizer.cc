@@ -37,53 +37,7 @@ std::unique_ptr<RangeRenderer> WindowRenderer(const MapModel& map, const Pose2& 
                            max_range + std::sqrt(0.5) * options.estimator.window);
 }
 
-LocalizeResult LocalizeOver(const MapModel& map, const Dataset& dataset,
-                            const LocalizeOptions& options, const LocalizeRuntime& runtime);
-
-}  // namespace
-
-ScanProblem MakeScanProblem(const MapModel& map, const Dataset& dataset, std::size_t scan,
-                            const Pose2& center, const LocalizeOptions& options) {
-  const double max_range = ScanMaxRange(dataset, scan, options);
-  ScanProblem p;
-  p.renderer = WindowRenderer(map, center, max_range, options);
-  p.problem = MakeScanProblem(*p.renderer, dataset.scans.at(scan), center, options.estimator,
-                              static_cast<float>(max_range));
-  return p;
-}
-
-LocalizeResult Localize(const MapModel& map, const Dataset& dataset, const LocalizeOptions& options,
-                        const std::function<void(std::size_t, std::size_t)>& progress) {
-  LocalizeRuntime runtime;
-  runtime.progress = progress;
-  return Localize(map, dataset, options, runtime);
-}
-
-std::vector<OdometryStall> OdometryStallsOutsideTheWindow(const Dataset& dataset,
-                                                          const LocalizeOptions& options) {
-  if (!options.use_odometry) return {};
-  const double half = 0.5 * options.estimator.window;
-  std::vector<OdometryStall> stalls =
-      FindOdometryStalls(dataset.scans, {half, half, options.estimator.heading_half_window});
-  const std::size_t n = ScansToLocalize(dataset, options);
-  std::erase_if(stalls, [n](const OdometryStall& stall) { return stall.first >= n; });
-  return stalls;
-}
-
-LocalizeResult Localize(const MapModel& map, const Dataset& dataset, const LocalizeOptions& options,
-                        const LocalizeRuntime& runtime) {
-  ValidateEstimatorParams(options.estimator);
-  std::vector<OdometryStall> stalls = OdometryStallsOutsideTheWindow(dataset, options);
-  if (stalls.empty()) return LocalizeOver(map, dataset, options, runtime);
-  Dataset filled = dataset;  // a copy of the scans, which only a log that stalled pays for
-  FillOdometryStalls(filled.scans, stalls);
-  LocalizeResult result = LocalizeOver(map, filled, options, runtime);
-  result.odometry_stalls = std::move(stalls);
-  return result;
-}
-
-namespace {
-
+// Localize over scans whose odometry stalls, if any, are filled in.
 LocalizeResult LocalizeOver(const MapModel& map, const Dataset& dataset,
                             const LocalizeOptions& options, const LocalizeRuntime& runtime) {
   if (dataset.scans.empty()) throw Error(dataset.source + ": the log has no laser scans");
@@ -137,5 +91,45 @@ LocalizeResult LocalizeOver(const MapModel& map, const Dataset& dataset,
 }
 
 }  // namespace
+
+ScanProblem MakeScanProblem(const MapModel& map, const Dataset& dataset, std::size_t scan,
+                            const Pose2& center, const LocalizeOptions& options) {
+  const double max_range = ScanMaxRange(dataset, scan, options);
+  ScanProblem p;
+  p.renderer = WindowRenderer(map, center, max_range, options);
+  p.problem = MakeScanProblem(*p.renderer, dataset.scans.at(scan), center, options.estimator,
+                              static_cast<float>(max_range));
+  return p;
+}
+
+LocalizeResult Localize(const MapModel& map, const Dataset& dataset, const LocalizeOptions& options,
+                        const std::function<void(std::size_t, std::size_t)>& progress) {
+  LocalizeRuntime runtime;
+  runtime.progress = progress;
+  return Localize(map, dataset, options, runtime);
+}
+
+std::vector<OdometryStall> OdometryStallsOutsideTheWindow(const Dataset& dataset,
+                                                          const LocalizeOptions& options) {
+  if (!options.use_odometry) return {};
+  const double half = 0.5 * options.estimator.window;
+  std::vector<OdometryStall> stalls =
+      FindOdometryStalls(dataset.scans, {half, half, options.estimator.heading_half_window});
+  const std::size_t n = ScansToLocalize(dataset, options);
+  std::erase_if(stalls, [n](const OdometryStall& stall) { return stall.first >= n; });
+  return stalls;
+}
+
+LocalizeResult Localize(const MapModel& map, const Dataset& dataset, const LocalizeOptions& options,
+                        const LocalizeRuntime& runtime) {
+  ValidateEstimatorParams(options.estimator);
+  std::vector<OdometryStall> stalls = OdometryStallsOutsideTheWindow(dataset, options);
+  if (stalls.empty()) return LocalizeOver(map, dataset, options, runtime);
+  Dataset filled = dataset;  // a copy of the scans, which only a log that stalled pays for
+  FillOdometryStalls(filled.scans, stalls);
+  LocalizeResult result = LocalizeOver(map, filled, options, runtime);
+  result.odometry_stalls = std::move(stalls);
+  return result;
+}
 
 }  // namespace evoslam
