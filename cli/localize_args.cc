@@ -27,6 +27,10 @@ void AddLocalizeJobOptions(CLI::App* cmd, LocalizeArgs& a, bool with_islands) {
   cmd->add_option("--f2-slope", a.f2_slope,
                   "F2: the tolerance's growth per metre of simulated plus observed range")
       ->check(NonNegativeNumber());
+  cmd->add_option("--f3-cap", a.f3_cap,
+                  "F3: count each beam's difference up to this many metres (0: uncapped, the "
+                  "papers' F3); 0.3 to 0.5 held best on real logs")
+      ->check(NonNegativeNumber());
   cmd->add_option("--estimator", a.estimator, "2d (heading by brute force) or 3d")
       ->check(CLI::IsMember({"2d", "3d"}));
   cmd->add_option("--optimizer", a.optimizer,
@@ -111,6 +115,7 @@ LocalizeOptions OptionsFrom(const LocalizeArgs& a) try {
   e.fitness.kind = ParseFitnessKind(a.fitness);
   e.fitness.f2_base = a.f2_base;
   e.fitness.f2_slope = a.f2_slope;
+  e.fitness.f3_cap = a.f3_cap;
   e.estimator = ParseEstimatorKind(a.estimator);
   // A preset supplies the algorithm and its settings; options given explicitly override them.
   const bool preset = !a.preset.empty();

@@ -20,6 +20,7 @@ struct LocalizeArgs {
   std::string map, map_from_log, log, start, relations;
   std::string fitness = "f3", estimator = "2d", optimizer = "de", strategy = "rand1exp";
   double f2_base = FitnessParams{}.f2_base, f2_slope = FitnessParams{}.f2_slope;
+  double f3_cap = FitnessParams{}.f3_cap;
   std::size_t pop = 25, gen = 25, max_scans = 0;
   double f = 0.6, cr = 0.9, window = 0.6, heading_window = 30.0, heading_step = 0.5;
   PsoParams pso;

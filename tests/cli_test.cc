@@ -93,6 +93,12 @@ TEST_F(CliTest, SimulateThenLocalizeWritesEveryOutput) {
   ASSERT_EQ(f2.status, 0) << f2.output;
   EXPECT_NE(f2.output.find("f2 (within 0.050 m + 0.0020 x the two ranges)"), std::string::npos)
       << f2.output;
+  const Result capped =
+      RunCli("localize --map " + Path("sim/world.lines") + " --log " + Path("sim/log.clf") +
+             " --f3-cap 0.4 --max-scans 5 --out " + Path("capped"));
+  ASSERT_EQ(capped.status, 0) << capped.output;
+  EXPECT_NE(capped.output.find("f3 (each beam's difference capped at 0.400 m)"), std::string::npos)
+      << capped.output;
 }
 
 std::string ReadAll(const fs::path& path) {
@@ -200,6 +206,9 @@ TEST_F(CliTest, BadFlagsAreRefused) {
   const Result f2_base = RunCli(localize + " --f2-base -0.01");
   EXPECT_EQ(f2_base.status, 2);
   EXPECT_NE(f2_base.output.find("--f2-base"), std::string::npos) << f2_base.output;
+  const Result f3_cap = RunCli(localize + " --f3-cap -1");
+  EXPECT_EQ(f3_cap.status, 2);
+  EXPECT_NE(f3_cap.output.find("--f3-cap"), std::string::npos) << f3_cap.output;
   EXPECT_EQ(RunCli(localize + " --bogus").status, 2);
   const Result strategy = RunCli(localize + " --strategy rand3exp");
   EXPECT_EQ(strategy.status, 2);

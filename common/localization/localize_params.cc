@@ -31,6 +31,7 @@ proto::LocalizeParams ToProto(const LocalizeOptions& options) {
   p.set_fitness(std::string(FitnessKindName(e.fitness.kind)));
   p.set_f2_base_m(e.fitness.f2_base);
   p.set_f2_slope(e.fitness.f2_slope);
+  p.set_f3_cap_m(e.fitness.f3_cap);
   p.set_estimator(std::string(EstimatorKindName(e.estimator)));
   p.set_optimizer(OptimizerName(e));
   p.set_strategy(std::string(DeStrategyName(e.algorithm.de.strategy)));
@@ -75,6 +76,7 @@ LocalizeOptions LocalizeOptionsFromProto(const proto::LocalizeParams& p) {
   e.fitness.kind = ParseFitnessKind(p.fitness());
   if (p.has_f2_base_m()) e.fitness.f2_base = p.f2_base_m();
   if (p.has_f2_slope()) e.fitness.f2_slope = p.f2_slope();
+  e.fitness.f3_cap = p.f3_cap_m();
   e.estimator = ParseEstimatorKind(p.estimator());
   e.optimizer = ParseOptimizer(p.optimizer(), e.algorithm);
   if (!p.has_algorithm()) throw Error("localize parameters: the algorithm settings are missing");

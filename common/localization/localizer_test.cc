@@ -154,6 +154,14 @@ TEST(LocalizeParamsTest, TheWireFormRunsTheSameJob) {
     EXPECT_EQ(back.estimator.fitness.f2_slope, 0.02);
     ExpectSameTrajectory(Localize(map, d, back), Localize(map, d, options));
   }
+  LocalizeOptions capped = IslandOptions();
+  capped.start = Pose2(2.5, 2.0, 0.55);
+  capped.estimator.fitness = {.kind = FitnessKind::kF3, .f3_cap = 0.25};
+  proto::LocalizeParams wire;
+  ASSERT_TRUE(wire.ParseFromString(ToProto(capped).SerializeAsString()));
+  const LocalizeOptions back = LocalizeOptionsFromProto(wire);
+  EXPECT_EQ(back.estimator.fitness.f3_cap, 0.25);
+  ExpectSameTrajectory(Localize(map, d, back), Localize(map, d, capped));
 }
 
 TEST(LocalizeParamsTest, RefusesParametersThatCannotWork) {
@@ -177,6 +185,9 @@ TEST(LocalizeParamsTest, RefusesParametersThatCannotWork) {
   EXPECT_THROW(LocalizeOptionsFromProto(p), Error);
   p = ToProto(LocalizeOptions{});
   p.set_f2_slope(std::numeric_limits<double>::infinity());
+  EXPECT_THROW(LocalizeOptionsFromProto(p), Error);
+  p = ToProto(LocalizeOptions{});
+  p.set_f3_cap_m(-0.3);
   EXPECT_THROW(LocalizeOptionsFromProto(p), Error);
 }
 

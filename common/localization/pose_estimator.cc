@@ -66,6 +66,9 @@ void ValidateEstimatorParams(const EstimatorParams& params) {
   if (!(params.fitness.f2_slope >= 0.0) || !std::isfinite(params.fitness.f2_slope)) {
     throw Error("F2 tolerance slope must be finite and >= 0");
   }
+  if (!(params.fitness.f3_cap >= 0.0) || !std::isfinite(params.fitness.f3_cap)) {
+    throw Error("F3 cap must be a finite length >= 0 (0: uncapped)");
+  }
   if (!(params.heading_half_window >= 0.0) || params.heading_half_window > 3.14159265358979323846) {
     throw Error("heading window must be between 0 and 180 degrees");
   }

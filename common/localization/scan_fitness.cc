@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "common/util/error.h"
@@ -70,9 +71,10 @@ namespace {
 
 // Per-shift sums, accumulated beam by beam: the inner loop runs over contiguous shifts, which the
 // compiler vectorises, and each shift's sum is added in beam order, so the result does not depend
-// on the vector width.
+// on the vector width. An uncapped F3 takes an infinite cap, which leaves every term's bits as
+// they are.
 EVOSLAM_VECTOR_CLONES void AccumulateF3(const ShiftLayout& layout, const ObservedBeams& observed,
-                                        std::span<const float> rays, float max_range,
+                                        std::span<const float> rays, float max_range, float cap,
                                         std::span<float> sums) {
   const std::size_t shifts = layout.shifts;
   const std::size_t stride = layout.shift_stride;
@@ -84,13 +86,13 @@ EVOSLAM_VECTOR_CLONES void AccumulateF3(const ShiftLayout& layout, const Observe
     const float* __restrict a = rays.data() + observed.index[j] * layout.beam_stride;
     if (stride == 1) {
       for (std::size_t k = 0; k < shifts; ++k) {
-        const float d = std::fabs(a[k] - b);
+        const float d = std::min(std::fabs(a[k] - b), cap);
         acc[k] += a[k] < max_range ? d : 0.0f;
       }
     } else {
       for (std::size_t k = 0; k < shifts; ++k) {
         const float ak = a[k * stride];
-        const float d = std::fabs(ak - b);
+        const float d = std::min(std::fabs(ak - b), cap);
         acc[k] += ak < max_range ? d : 0.0f;
       }
     }
@@ -117,13 +119,18 @@ EVOSLAM_VECTOR_CLONES void AccumulateF2(const FitnessParams& params, const Shift
   }
 }
 
+float F3Cap(const FitnessParams& params) {
+  return params.f3_cap > 0.0 ? static_cast<float>(params.f3_cap)
+                             : std::numeric_limits<float>::infinity();
+}
+
 }  // namespace
 
 ShiftScore BestShift(const FitnessParams& params, const ShiftLayout& layout,
                      const ObservedBeams& observed, std::span<const float> rays, float max_range,
                      std::span<float> scratch) {
   if (params.kind == FitnessKind::kF3) {
-    AccumulateF3(layout, observed, rays, max_range, scratch);
+    AccumulateF3(layout, observed, rays, max_range, F3Cap(params), scratch);
   } else {
     AccumulateF2(params, layout, observed, rays, max_range, scratch);
   }
@@ -141,12 +148,13 @@ ShiftScore BestShift(const FitnessParams& params, const ShiftLayout& layout,
 double ScoreAligned(const FitnessParams& params, const ObservedBeams& observed,
                     std::span<const float> rays, float max_range) {
   float sum = 0.0f;
+  const float cap = F3Cap(params);
   for (std::size_t j = 0; j < observed.index.size(); ++j) {
     const float a = rays[observed.index[j]];
     const float b = observed.range[j];
     if (!(a < max_range)) continue;
     if (params.kind == FitnessKind::kF3) {
-      sum += std::fabs(a - b);
+      sum += std::min(std::fabs(a - b), cap);
     } else if (std::fabs(a - b) <= static_cast<float>(params.f2_base + params.f2_slope * (a + b))) {
       sum -= 1.0f;
     }

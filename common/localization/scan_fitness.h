@@ -11,7 +11,8 @@
 namespace evoslam {
 
 // The two matching strategies of Moravec's estimator, both minimised here:
-// F3: sum over beams of |simulated - observed| (L1, point to point);
+// F3: sum over beams of |simulated - observed| (L1, point to point), each beam's term optionally
+//     capped;
 // F2: minus the number of beams whose difference lies within the sensor's tolerance.
 // Beams the observation has no return for, and beams the simulation finds no wall for within
 // range, are left out of both.
@@ -25,6 +26,10 @@ struct FitnessParams {
   // are the linearised accuracy of a SICK scanner used by the papers (1 cm + 59/6000 per metre).
   double f2_base = 0.01;
   double f2_slope = 59.0 / 6000.0;
+  // F3 counts each beam's difference up to this many metres; 0 leaves it uncapped, as the papers
+  // do. A cap keeps a few beams that meet what the map lacks (people, doors, a grid's ragged
+  // walls at grazing angles) from outweighing the rest of the scan.
+  double f3_cap = 0.0;
 };
 
 // How the observed beams line up with a fan of simulated rays: beam j of heading shift k reads

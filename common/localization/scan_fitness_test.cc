@@ -115,6 +115,57 @@ TEST(ScanFitnessTest, LeavesOutBeamsWithoutReturnOnEitherSide) {
   EXPECT_FLOAT_EQ(ScoreAligned(f2, observed, far, 8.0f), -1.0f);
 }
 
+TEST(ScanFitnessTest, F3sCapBoundsEachBeamsTerm) {
+  LaserScan scan;
+  scan.angle_increment = kDeg;
+  scan.range_max = 30.0;
+  scan.ranges = {1.0f, 2.0f, 3.0f};
+  const ObservedBeams observed = PrepareObservation(scan, 30.0f);
+  // Beam 0 off by 0.25 m, beam 1 by 5 m (a person the map lacks), beam 2 by 0.5 m.
+  const std::vector<float> rays = {1.25f, 7.0f, 2.5f};
+  FitnessParams f3;
+  EXPECT_FLOAT_EQ(ScoreAligned(f3, observed, rays, 30.0f), 5.75f);
+  f3.f3_cap = 0.4;
+  EXPECT_FLOAT_EQ(ScoreAligned(f3, observed, rays, 30.0f), 0.25f + 0.4f + 0.4f);
+
+  // The heading search scores alike: one beam per shift, so each shift's sum is one term.
+  const ShiftLayout layout = MakeShiftLayout(scan, 0.0, kDeg);
+  ASSERT_EQ(layout.shifts, 1u);
+  std::vector<float> sums(1);
+  EXPECT_FLOAT_EQ(BestShift(f3, layout, observed, rays, 30.0f, sums).fitness, 1.05f);
+  f3.f3_cap = 0.0;
+  EXPECT_FLOAT_EQ(BestShift(f3, layout, observed, rays, 30.0f, sums).fitness, 5.75f);
+}
+
+// A beam whose simulated range jumps between neighbouring candidates (a ray that slips past a
+// door frame, a wall the grid draws ragged at a grazing angle) can outweigh a whole scan in the
+// uncapped sum; capped, it counts no more than one beam that misses.
+TEST(ScanFitnessTest, CappedF3KeepsTheHeadingTheRestOfTheScanAgreesOn) {
+  LaserScan scan;
+  scan.angle_increment = kDeg;
+  scan.range_max = 30.0;
+  scan.ranges = {2.0f, 2.2f, 2.4f, 2.6f, 2.8f};
+  const ObservedBeams observed = PrepareObservation(scan, 30.0f);
+  const ShiftLayout layout = MakeShiftLayout(scan, kDeg, kDeg);
+  ASSERT_EQ(layout.shifts, 3u);
+  ASSERT_EQ(layout.rays, 7u);
+  // At the centre (beam j reads ray j + 1) four beams fit exactly and the last misses by 4 m;
+  // one step to the right (ray j) every beam is 0.2 m off; one to the left (ray j + 2), four
+  // are 0.2 m off and one misses by 4.2 m.
+  const std::vector<float> rays = {1.8f, 2.0f, 2.2f, 2.4f, 2.6f, 6.8f, 3.0f};
+  std::vector<float> sums(layout.shifts);
+  FitnessParams f3;
+  const ShiftScore uncapped = BestShift(f3, layout, observed, rays, 30.0f, sums);
+  EXPECT_EQ(uncapped.shift, 0u);
+  EXPECT_NEAR(uncapped.fitness, 1.0, 1e-5);
+  f3.f3_cap = 0.3;
+  const ShiftScore capped = BestShift(f3, layout, observed, rays, 30.0f, sums);
+  EXPECT_EQ(capped.shift, 1u);
+  EXPECT_NEAR(capped.fitness, 0.3, 1e-5);
+  EXPECT_NEAR(sums[0], 1.0, 1e-5);
+  EXPECT_NEAR(sums[2], 0.2 * 4 + 0.3, 1e-5);
+}
+
 TEST(ScanFitnessTest, ParsesNames) {
   EXPECT_EQ(ParseFitnessKind("f2"), FitnessKind::kF2);
   EXPECT_EQ(FitnessKindName(ParseFitnessKind("f3")), "f3");

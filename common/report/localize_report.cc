@@ -132,6 +132,9 @@ std::string FormatSummary(const proto::LocalizeReport& r) {
   if (p.fitness() == "f2") {
     s << " (within " << std::setprecision(3) << p.f2_base_m() << " m + " << std::setprecision(4)
       << p.f2_slope() << " x the two ranges)" << std::setprecision(2);
+  } else if (p.f3_cap_m() > 0.0) {
+    s << " (each beam's difference capped at " << std::setprecision(3) << p.f3_cap_m() << " m)"
+      << std::setprecision(2);
   }
   s << ", " << p.estimator() << " estimator, " << p.optimizer();
   if (p.optimizer() == "island") {

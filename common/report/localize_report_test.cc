@@ -92,6 +92,16 @@ TEST(LocalizeReportTest, SummaryGivesF2sTolerance) {
       << s;
 }
 
+TEST(LocalizeReportTest, SummaryGivesF3sCapWhenThereIsOne) {
+  proto::LocalizeReport r = SampleReport();
+  EXPECT_EQ(FormatSummary(r).find("capped"), std::string::npos) << "the papers' F3 has no cap";
+  r.mutable_params()->set_f3_cap_m(0.3);
+  const std::string s = FormatSummary(r);
+  EXPECT_NE(s.find("  f3 (each beam's difference capped at 0.300 m), 2d estimator"),
+            std::string::npos)
+      << s;
+}
+
 TEST(LocalizeReportTest, SummaryNamesTheOdometryStallsFilledIn) {
   proto::LocalizeReport r = SampleReport();
   EXPECT_EQ(FormatSummary(r).find("stalled"), std::string::npos) << "none, no line";
