@@ -29,7 +29,7 @@ void AddLocalizeJobOptions(CLI::App* cmd, LocalizeArgs& a, bool with_islands) {
       ->check(NonNegativeNumber());
   cmd->add_option("--f3-cap", a.f3_cap,
                   "F3: count each beam's difference up to this many metres (0: uncapped, the "
-                  "papers' F3); 0.3 to 0.5 held best on real logs")
+                  "papers' F3); 0.5 held best on real logs")
       ->check(NonNegativeNumber());
   cmd->add_option("--estimator", a.estimator, "2d (heading by brute force) or 3d")
       ->check(CLI::IsMember({"2d", "3d"}));
