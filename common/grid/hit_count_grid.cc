@@ -11,6 +11,7 @@
 #include <type_traits>
 
 #include "common/util/error.h"
+#include "common/util/finite_checks.h"
 
 namespace evoslam {
 
@@ -61,7 +62,7 @@ std::size_t GridCellSet::size() const {
 
 HitCountGrid::HitCountGrid(double resolution, const Eigen::Vector2d& origin, int width, int height)
     : resolution_(resolution), origin_(origin), width_(width), height_(height) {
-  if (!(resolution > 0.0) || !std::isfinite(resolution)) {
+  if (!IsFinitePositive(resolution)) {
     throw Error("hit count grid: resolution must be positive and finite");
   }
   if (!origin.allFinite()) throw Error("hit count grid: origin must be finite");

@@ -9,6 +9,7 @@
 
 #include "common/grid/distance_transform.h"
 #include "common/util/error.h"
+#include "common/util/finite_checks.h"
 
 namespace evoslam {
 namespace {
@@ -109,7 +110,7 @@ void ForEachCell(const GridSegment& segment, Visit visit) {
 }
 
 void ThrowUnlessValidResolution(double resolution) {
-  if (!std::isfinite(resolution) || resolution <= 0.0) {
+  if (!IsFinitePositive(resolution)) {
     throw Error("occupancy grid: resolution must be a positive number of metres, got " +
                 std::to_string(resolution));
   }
@@ -155,7 +156,7 @@ ScanExtent ExtentOf(std::span<const LaserScan> scans, std::span<const Pose2> pos
   }
   if (scans.empty()) throw Error("occupancy grid: no scans to build a grid from");
   ThrowUnlessValidResolution(resolution);
-  if (!std::isfinite(margin) || margin < 0.0) {
+  if (!IsFiniteNonNegative(margin)) {
     throw Error("occupancy grid: margin must be a non-negative number of metres");
   }
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(kInf);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "common/util/error.h"
+#include "common/util/finite_checks.h"
 
 namespace evoslam {
 namespace {
@@ -118,7 +119,7 @@ void Image::DrawLine(double x0, double y0, double x1, double y1, Rgb color, int 
 }
 
 void Image::DrawDisc(double cx, double cy, double radius, Rgb color) {
-  if (!std::isfinite(cx) || !std::isfinite(cy) || !std::isfinite(radius) || radius < 0.0) return;
+  if (!std::isfinite(cx) || !std::isfinite(cy) || !IsFiniteNonNegative(radius)) return;
   const double x_lo = std::max(0.0, std::ceil(cx - radius));
   const double x_hi = std::min(width_ - 1.0, std::floor(cx + radius));
   const double y_lo = std::max(0.0, std::ceil(cy - radius));

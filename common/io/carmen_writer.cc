@@ -12,6 +12,7 @@
 #include "common/io/text_fields.h"
 #include "common/io/text_file_writer.h"
 #include "common/util/error.h"
+#include "common/util/finite_checks.h"
 
 namespace evoslam {
 namespace {
@@ -244,7 +245,7 @@ class CarmenWriter {
     } else {
       RequireFinite(scan.angle_min, what, index, "angle_min");
       RequireFinite(scan.angle_increment, what, index, "angle_increment");
-      if (!std::isfinite(scan.range_max) || scan.range_max <= 0.0) {
+      if (!IsFinitePositive(scan.range_max)) {
         Fail(fmt::format("{} {} has range_max {}, expected a positive number", what, index,
                          scan.range_max));
       }

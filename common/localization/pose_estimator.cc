@@ -1,6 +1,5 @@
 #include "common/localization/pose_estimator.h"
 
-#include <cmath>
 #include <limits>
 #include <memory>
 #include <string>
@@ -10,6 +9,7 @@
 #include "common/optim/evolve.h"
 #include "common/optim/exhaustive_search.h"
 #include "common/util/error.h"
+#include "common/util/finite_checks.h"
 
 namespace evoslam {
 
@@ -60,13 +60,13 @@ IslandModelParams IslandModelOf(const EstimatorParams& params) {
 
 void ValidateEstimatorParams(const EstimatorParams& params) {
   if (!(params.window > 0.0)) throw Error("search window must be positive");
-  if (!(params.fitness.f2_base >= 0.0) || !std::isfinite(params.fitness.f2_base)) {
+  if (!IsFiniteNonNegative(params.fitness.f2_base)) {
     throw Error("F2 tolerance base must be a finite length >= 0");
   }
-  if (!(params.fitness.f2_slope >= 0.0) || !std::isfinite(params.fitness.f2_slope)) {
+  if (!IsFiniteNonNegative(params.fitness.f2_slope)) {
     throw Error("F2 tolerance slope must be finite and >= 0");
   }
-  if (!(params.fitness.f3_cap >= 0.0) || !std::isfinite(params.fitness.f3_cap)) {
+  if (!IsFiniteNonNegative(params.fitness.f3_cap)) {
     throw Error("F3 cap must be a finite length >= 0 (0: uncapped)");
   }
   if (!(params.heading_half_window >= 0.0) || params.heading_half_window > 3.14159265358979323846) {

@@ -12,6 +12,7 @@
 #include "common/io/text_fields.h"
 #include "common/mapping/segment_geometry.h"
 #include "common/util/error.h"
+#include "common/util/finite_checks.h"
 
 namespace evoslam {
 namespace {
@@ -61,7 +62,7 @@ int CellIndex(double coordinate, double origin, double inv_cell_size, int count)
 
 LineMap::LineMap(std::vector<Segment> segments, double cell_size)
     : segments_(std::move(segments)), cell_size_(cell_size) {
-  if (!(cell_size > 0.0) || !std::isfinite(cell_size)) {
+  if (!IsFinitePositive(cell_size)) {
     throw Error("line map: cell size must be a positive number, got " + FormatShortest(cell_size));
   }
   if (segments_.size() >= std::numeric_limits<std::uint32_t>::max()) {

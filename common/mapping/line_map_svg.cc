@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
 #include <string_view>
 
 #include "common/util/error.h"
+#include "common/util/finite_checks.h"
 
 namespace evoslam {
 namespace {
@@ -27,7 +27,7 @@ std::string Number(double value) {
 
 void WriteSvg(const LineMap& map, const std::filesystem::path& path,
               std::span<const std::vector<Eigen::Vector2d>> polylines, double pixels_per_metre) {
-  if (!(pixels_per_metre > 0.0) || !std::isfinite(pixels_per_metre)) {
+  if (!IsFinitePositive(pixels_per_metre)) {
     throw Error(path.string() + ": SVG scale must be a positive number of pixels per metre");
   }
   // The drawing covers the walls and every polyline point, plus a margin.

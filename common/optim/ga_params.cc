@@ -4,6 +4,7 @@
 #include <string>
 
 #include "common/util/error.h"
+#include "common/util/finite_checks.h"
 
 namespace evoslam {
 
@@ -29,7 +30,7 @@ std::size_t CandidatesPerGeneration(const GaParams& params) {
 void ValidateGaParams(const GaParams& params) {
   if (params.bits < 1 || params.bits > 30)
     throw Error("genetic algorithm: bits must be in 1..30, got " + std::to_string(params.bits));
-  if (!(params.grid_step >= 0.0) || !std::isfinite(params.grid_step))
+  if (!IsFiniteNonNegative(params.grid_step))
     throw Error("genetic algorithm: grid step must be finite and >= 0");
   if (!(params.elite_fraction > 0.0 && params.elite_fraction <= 1.0))
     throw Error("genetic algorithm: elite fraction must be in (0, 1]");

@@ -8,6 +8,7 @@
 #include "common/optim/immunity.h"
 #include "common/optim/pareto.h"
 #include "common/util/error.h"
+#include "common/util/finite_checks.h"
 
 namespace evoslam {
 
@@ -83,7 +84,7 @@ void ValidateImmuneMoeaParams(const ImmuneMoeaParams& params) {
   probability(params.p_recombination, "p_recombination");
   probability(params.p_immunity, "p_immunity");
   probability(params.p_mutation, "p_mutation");
-  if (!(params.blend_alpha >= 0.0) || !std::isfinite(params.blend_alpha))
+  if (!IsFiniteNonNegative(params.blend_alpha))
     throw Error(name + "blend_alpha must be a finite number >= 0");
   if (!(params.restart_spread >= 0.0 && params.restart_spread <= 1.0))
     throw Error(name + "restart_spread must be in [0, 1]");

@@ -8,6 +8,7 @@
 
 #include "common/optim/pareto.h"
 #include "common/util/error.h"
+#include "common/util/finite_checks.h"
 
 namespace evoslam {
 namespace {
@@ -80,7 +81,7 @@ void ValidateMuPlusLambdaParams(const MuPlusLambdaParams& params) {
   if (params.q < 1) throw Error(name + "tournament size q must be at least 1");
   if (!(params.pc >= 0.0 && params.pc <= 1.0)) throw Error(name + "pc must be in [0, 1]");
   if (!(params.pm >= 0.0 && params.pm <= 1.0)) throw Error(name + "pm must be in [0, 1]");
-  if (!(params.c > 0.0) || !std::isfinite(params.c))
+  if (!IsFinitePositive(params.c))
     throw Error(name + "mutation step c must be a finite number > 0");
   if (params.gene_group < 1) throw Error(name + "gene_group must be at least 1");
   if (params.column < 1 || params.column % params.gene_group != 0) {
@@ -95,7 +96,7 @@ void ValidateMuPlusLambdaParams(const MuPlusLambdaParams& params) {
     throw Error(name + "lambda (" + std::to_string(params.lambda) + ") is smaller than the " +
                 std::to_string(OffspringSurvivors(params)) + " survivors it must supply");
   }
-  if (!(params.variance_threshold >= 0.0) || !std::isfinite(params.variance_threshold))
+  if (!IsFiniteNonNegative(params.variance_threshold))
     throw Error(name + "variance_threshold must be a finite number >= 0");
 }
 

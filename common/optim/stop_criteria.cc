@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "common/util/error.h"
+#include "common/util/finite_checks.h"
 
 namespace evoslam {
 
@@ -33,7 +34,7 @@ void ValidateStopCriteria(const StopCriteria& c) {
         "stop criteria: set an evaluation budget, a generation limit, a stagnation limit or a "
         "wall time, or the run never ends");
   }
-  if (!(c.wall_seconds >= 0.0) || !std::isfinite(c.wall_seconds))
+  if (!IsFiniteNonNegative(c.wall_seconds))
     throw Error("stop criteria: wall time must be a finite number of seconds >= 0");
   if (c.target && std::isnan(*c.target)) throw Error("stop criteria: target fitness is NaN");
 }

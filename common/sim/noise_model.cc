@@ -7,12 +7,13 @@
 #include <fmt/format.h>
 
 #include "common/util/error.h"
+#include "common/util/finite_checks.h"
 
 namespace evoslam {
 namespace {
 
 void CheckNonNegative(std::string_view name, double value) {
-  if (!(value >= 0.0) || !std::isfinite(value)) {
+  if (!IsFiniteNonNegative(value)) {
     throw Error(fmt::format("noise: {} must be a finite number >= 0, got {}", name, value));
   }
 }

@@ -1,6 +1,6 @@
 #include "common/sim/simulator.h"
 
-#include <cmath>
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <system_error>
@@ -15,6 +15,7 @@
 #include "common/sim/crowd.h"
 #include "common/sim/trajectory.h"
 #include "common/util/error.h"
+#include "common/util/finite_checks.h"
 #include "common/util/random.h"
 
 namespace evoslam {
@@ -27,10 +28,10 @@ enum Stream : std::uint64_t { kOdometryStream = 1, kRangeStream = 2, kCrowdStrea
 void CheckOptions(const SimulationOptions& options) {
   CheckLaserModel(options.laser);
   CheckNoiseModel(options.noise);
-  if (!(options.step >= 0.0) || !std::isfinite(options.step)) {
+  if (!IsFiniteNonNegative(options.step)) {
     throw Error(fmt::format("simulation: step must be a finite number >= 0, got {}", options.step));
   }
-  if (!(options.scan_interval > 0.0) || !std::isfinite(options.scan_interval)) {
+  if (!IsFinitePositive(options.scan_interval)) {
     throw Error(fmt::format("simulation: scan interval must be a positive number, got {}",
                             options.scan_interval));
   }

@@ -9,6 +9,7 @@
 #include "common/mapping/segment_geometry.h"
 #include "common/transform/angle_units.h"
 #include "common/util/error.h"
+#include "common/util/finite_checks.h"
 
 namespace evoslam {
 namespace {
@@ -48,9 +49,8 @@ struct Legs {
 };
 
 Legs MakeLegs(std::span<const Eigen::Vector2d> waypoints, const PathOptions& options) {
-  if (!(options.step > 0.0) || !std::isfinite(options.step) || !(options.turn_radius >= 0.0) ||
-      !std::isfinite(options.turn_radius) || !(options.min_turn_sampling_radius > 0.0) ||
-      !std::isfinite(options.min_turn_sampling_radius)) {
+  if (!IsFinitePositive(options.step) || !IsFiniteNonNegative(options.turn_radius) ||
+      !IsFinitePositive(options.min_turn_sampling_radius)) {
     throw Error("path: step and sampling radius must be positive, turn radius non-negative");
   }
   Legs legs;

@@ -11,6 +11,7 @@
 #include "common/optim/evolve.h"
 #include "common/sensor/odometry_stalls.h"
 #include "common/util/error.h"
+#include "common/util/finite_checks.h"
 #include "common/util/random.h"
 
 namespace evoslam {
@@ -37,12 +38,12 @@ void ValidateLocalSearchParams(const LocalSearchParams& p) {
   if (p.iterations == 0 || p.iterations > kMaxLocalIterations)
     throw Error("local search: the iterations must number from 1 to " +
                 std::to_string(kMaxLocalIterations));
-  if (!(p.turn_error_per_rad >= 0.0) || !std::isfinite(p.turn_error_per_rad))
+  if (!IsFiniteNonNegative(p.turn_error_per_rad))
     throw Error(
         "local search: the heading error per radian turned must be finite and not negative");
   if (!std::isfinite(p.carried_turn_shift))
     throw Error("local search: the shift by the previous step's heading correction must be finite");
-  if (!(p.carried_turn_error >= 0.0) || !std::isfinite(p.carried_turn_error))
+  if (!IsFiniteNonNegative(p.carried_turn_error))
     throw Error(
         "local search: the share of the previous step's heading correction must be finite and "
         "not negative");
@@ -53,7 +54,7 @@ void ValidateLocalSearchParams(const LocalSearchParams& p) {
     throw Error("local search: the odometry pull must be in [0, 1)");
   if (!(p.min_constraint_ratio >= 0.0 && p.min_constraint_ratio < 1.0))
     throw Error("local search: the minimum constraint ratio must be in [0, 1)");
-  if (!(p.odometry_weight >= 0.0) || !std::isfinite(p.odometry_weight))
+  if (!IsFiniteNonNegative(p.odometry_weight))
     throw Error("local search: the odometry weight must be finite and not negative");
   if (!std::isfinite(p.frontier_margin))
     throw Error("local search: the frontier margin must be finite");

@@ -8,6 +8,7 @@
 
 #include "common/slam/place_matcher.h"
 #include "common/util/error.h"
+#include "common/util/finite_checks.h"
 
 namespace evoslam {
 namespace {
@@ -31,7 +32,7 @@ void ValidateLoopDetectionParams(const LoopDetectionParams& p) {
     throw Error("loop detection: the match score threshold must be in (0, 1]");
   if (!(p.min_distinctness >= 0.0 && p.min_distinctness <= 1.0))
     throw Error("loop detection: the distinctness threshold must be in [0, 1]");
-  if (!(p.match_window_per_metre >= 0.0) || !std::isfinite(p.match_window_per_metre))
+  if (!IsFiniteNonNegative(p.match_window_per_metre))
     throw Error("loop detection: the window's growth per metre must be finite and not negative");
   if (!(p.max_match_window >= p.match_window) || !std::isfinite(p.max_match_window))
     throw Error("loop detection: the largest match window must be finite and at least the window");
@@ -39,7 +40,7 @@ void ValidateLoopDetectionParams(const LoopDetectionParams& p) {
     throw Error("loop detection: the rival distance must be positive and within the match window");
   if (!(p.fit_tolerance >= 0.0) || !(p.fit_tolerance_theta >= 0.0))
     throw Error("loop detection: the fit tolerances must not be negative");
-  if (!(p.spread_score >= 0.0) || !std::isfinite(p.spread_score))
+  if (!IsFiniteNonNegative(p.spread_score))
     throw Error("loop detection: the spread's score scale must be finite and not negative");
 }
 

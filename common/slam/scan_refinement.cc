@@ -8,6 +8,7 @@
 
 #include "common/transform/pose2_frame.h"
 #include "common/util/error.h"
+#include "common/util/finite_checks.h"
 
 namespace evoslam {
 namespace {
@@ -68,9 +69,9 @@ std::optional<Eigen::Vector3d> CoordinateScale(std::span<const Eigen::Vector2d> 
 
 void ValidateScanRefinementParams(const ScanRefinementParams& p) {
   if (p.iterations > 1000) throw Error("scan refinement: at most 1000 iterations");
-  if (!(p.max_shift_cells >= 0.0) || !std::isfinite(p.max_shift_cells))
+  if (!IsFiniteNonNegative(p.max_shift_cells))
     throw Error("scan refinement: the largest shift must be finite and not negative");
-  if (!(p.max_turn >= 0.0) || !std::isfinite(p.max_turn))
+  if (!IsFiniteNonNegative(p.max_turn))
     throw Error("scan refinement: the largest turn must be finite and not negative");
   if (!(p.wall_share >= 0.0 && p.wall_share <= 1.0))
     throw Error("scan refinement: the wall share must lie in [0, 1]");

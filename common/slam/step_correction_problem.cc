@@ -6,6 +6,7 @@
 #include <string>
 
 #include "common/util/error.h"
+#include "common/util/finite_checks.h"
 
 namespace evoslam {
 namespace {
@@ -40,7 +41,7 @@ StepCorrectionProblem::StepCorrectionProblem(const HitCountGrid& map, const Lase
   if (!(max_error.array() >= 0.0).all() || !max_error.allFinite()) {
     throw Error("local search: the maximum step error must be finite and not negative");
   }
-  if (!(odometry_pull >= 0.0) || !std::isfinite(odometry_pull)) {
+  if (!IsFiniteNonNegative(odometry_pull)) {
     throw Error("local search: the odometry pull must be finite and not negative");
   }
   returns_ = ReturnPoints(scan);
