@@ -124,10 +124,9 @@ LocalizeResult Localize(const MapModel& map, const Dataset& dataset, const Local
                         const LocalizeRuntime& runtime) {
   ValidateEstimatorParams(options.estimator);
   std::vector<OdometryStall> stalls = OdometryStallsOutsideTheWindow(dataset, options);
-  if (stalls.empty()) return LocalizeOver(map, dataset, options, runtime);
-  Dataset filled = dataset;  // a copy of the scans, which only a log that stalled pays for
-  FillOdometryStalls(filled.scans, stalls);
-  LocalizeResult result = LocalizeOver(map, filled, options, runtime);
+  LocalizeResult result = RunWithOdometryStallsFilled(dataset, stalls, [&](const Dataset& log) {
+    return LocalizeOver(map, log, options, runtime);
+  });
   result.odometry_stalls = std::move(stalls);
   return result;
 }

@@ -4,8 +4,10 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <span>
+#include <utility>
 #include <vector>
 
+#include "common/sensor/dataset.h"
 #include "common/sensor/laser_scan.h"
 #include "common/transform/pose2.h"
 
@@ -33,6 +35,17 @@ std::vector<OdometryStall> FindOdometryStalls(std::span<const LaserScan> scans,
 // not increase: the motion the late reading reports, as it happened while the laser scanned.
 // `stalls` must come from FindOdometryStalls on these scans.
 void FillOdometryStalls(std::span<LaserScan> scans, std::span<const OdometryStall> stalls);
+
+// `run(dataset)`, or `run` over a copy of `dataset` with `stalls` filled when there are any: only
+// a log that stalled pays for the copy.
+template <typename Run>
+auto RunWithOdometryStallsFilled(const Dataset& dataset, std::span<const OdometryStall> stalls,
+                                 Run&& run) {
+  if (stalls.empty()) return std::forward<Run>(run)(dataset);
+  Dataset filled = dataset;
+  FillOdometryStalls(filled.scans, stalls);
+  return std::forward<Run>(run)(std::as_const(filled));
+}
 
 }  // namespace evoslam
 

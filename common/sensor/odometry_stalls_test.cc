@@ -82,5 +82,32 @@ TEST(FillOdometryStallsTest, RefusesAStallWithoutAReadingEitherSide) {
   EXPECT_THROW(FillOdometryStalls(scans, std::vector<OdometryStall>{at_end}), Error);
 }
 
+TEST(RunWithOdometryStallsFilledTest, RunsOverTheLogItselfWhenNothingStalled) {
+  Dataset log{.source = "drive",
+              .scans = Drive({0.0, 0.2, 0.4}),
+              .rear_scans = {},
+              .odometry = {},
+              .params = {}};
+  const Dataset* seen = RunWithOdometryStallsFilled(log, std::vector<OdometryStall>{},
+                                                    [](const Dataset& d) { return &d; });
+  EXPECT_EQ(seen, &log);  // no copy
+}
+
+TEST(RunWithOdometryStallsFilledTest, RunsOverAFilledCopyAndLeavesTheLogAsItWas) {
+  const std::vector<LaserScan> truth = Drive({0.0, 0.2, 0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6});
+  Dataset log{.source = "drive", .scans = truth, .rear_scans = {}, .odometry = {}, .params = {}};
+  Stall(log.scans, 3, 6);
+  const std::vector<OdometryStall> stalls = FindOdometryStalls(log.scans, kCube);
+  ASSERT_EQ(stalls.size(), 1u);
+  const Pose2 fourth = RunWithOdometryStallsFilled(log, stalls, [&](const Dataset& d) {
+    EXPECT_NE(&d, &log);
+    EXPECT_EQ(d.source, log.source);
+    return d.scans[4].odometry;
+  });
+  EXPECT_NEAR(fourth.x(), truth[4].odometry.x(), 1e-9);
+  EXPECT_NEAR(fourth.theta(), truth[4].odometry.theta(), 1e-9);
+  EXPECT_EQ(log.scans[4].odometry.x(), log.scans[2].odometry.x());  // the log keeps its stall
+}
+
 }  // namespace
 }  // namespace evoslam

@@ -244,10 +244,9 @@ LocalSearchResult RunLocalSearch(const Dataset& dataset, const LocalSearchParams
   ValidateLocalSearchParams(params);
   if (dataset.scans.empty()) throw Error(dataset.source + ": the log has no laser scans");
   const std::vector<OdometryStall> stalls = FindOdometryStalls(dataset.scans, params.max_error);
-  if (stalls.empty()) return RunOverFilledLog(dataset, params, seed, map, progress);
-  Dataset filled = dataset;  // a copy of the scans, which only a log that stalled pays for
-  FillOdometryStalls(filled.scans, stalls);
-  return RunOverFilledLog(filled, params, seed, map, progress);
+  return RunWithOdometryStallsFilled(dataset, stalls, [&](const Dataset& log) {
+    return RunOverFilledLog(log, params, seed, map, progress);
+  });
 }
 
 }  // namespace evoslam

@@ -277,11 +277,9 @@ RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, st
   std::vector<OdometryStall> stalls = FindOdometryStalls(dataset.scans, params.local.max_error);
   const std::size_t n = ScansToMap(dataset, params);
   std::erase_if(stalls, [n](const OdometryStall& stall) { return stall.first >= n; });
-  if (stalls.empty()) return RunOverFilledLog(dataset, params, seed, runtime);
-  // A copy of the scans, which only a log whose odometry stalled pays for.
-  Dataset filled = dataset;
-  FillOdometryStalls(filled.scans, stalls);
-  RssSlamResult result = RunOverFilledLog(filled, params, seed, runtime);
+  RssSlamResult result = RunWithOdometryStallsFilled(dataset, stalls, [&](const Dataset& log) {
+    return RunOverFilledLog(log, params, seed, runtime);
+  });
   result.odometry_stalls = std::move(stalls);
   return result;
 }
