@@ -1,8 +1,7 @@
 #include "common/io/carmen_format.h"
 
-#include <cmath>
-
 #include "common/io/text_fields.h"
+#include "common/util/finite_checks.h"
 
 namespace evoslam {
 
@@ -19,7 +18,7 @@ bool IsRangeMaxParam(std::string_view name, bool rear) {
 
 std::optional<double> ParseRangeMaxParam(std::string_view value) {
   const std::optional<double> parsed = ParseDouble(value);
-  if (!parsed || !std::isfinite(*parsed) || *parsed <= 0.0) return std::nullopt;
+  if (!parsed || !IsFinitePositive(*parsed)) return std::nullopt;
   return parsed;
 }
 

@@ -13,6 +13,7 @@
 #include "common/io/line_reader.h"
 #include "common/io/text_fields.h"
 #include "common/util/error.h"
+#include "common/util/finite_checks.h"
 
 namespace evoslam {
 namespace {
@@ -61,7 +62,7 @@ class FieldParser {
   // Beam `beam` (0-based) of `beams`; messages count beams from 1 as people do.
   float Range(std::size_t i, std::size_t beam, std::size_t beams) const {
     const std::optional<float> value = ParseFloat(fields_[i]);
-    if (!value || !std::isfinite(*value) || *value < 0.0F) {
+    if (!value || !IsFiniteNonNegative(*value)) {
       Fail(fmt::format("range {} of {} is '{}', expected a finite number >= 0", beam + 1, beams,
                        fields_[i]));
     }

@@ -223,7 +223,7 @@ class CarmenWriter {
   void WriteScan(const LaserScan& scan, std::size_t index, bool rear) {
     const std::string_view what = rear ? "rear scan" : "scan";
     for (std::size_t i = 0; i < scan.size(); ++i) {
-      if (!std::isfinite(scan.ranges[i]) || scan.ranges[i] < 0.0F) {
+      if (!IsFiniteNonNegative(scan.ranges[i])) {
         Fail(fmt::format("{} {} has range {} at beam {}; CARMEN ranges are finite and >= 0", what,
                          index, scan.ranges[i], i));
       }
