@@ -17,10 +17,14 @@ enum class CellState { kUnknown, kFree, kOccupied };
 // Inverse sensor model. A cell's log-odds is derived from its counts as
 //   hits * logit(kHitProbability) + misses * logit(kMissProbability)
 // over a prior of 0.5, so a grid does not depend on the order its scans were inserted in.
+// A hit weighs as much as three misses, as in GMapping's rule (occupied once a quarter of the
+// beams reaching a cell end there): rays grazing a corridor wall from far off cross its row of
+// cells, and misses worth half a hit erased walls that only one pass had seen (see
+// docs/estimator.md).
 inline constexpr double kHitProbability = 0.7;
-inline constexpr double kMissProbability = 0.4;
+inline constexpr double kMissProbability = 0.43;
 // A cell is occupied above kOccupiedThreshold, free below kFreeThreshold, else unknown.
-// With the model above one hit (and no miss) makes a cell occupied, two misses make it free.
+// With the model above one hit (and no miss) makes a cell occupied, three misses make it free.
 inline constexpr double kOccupiedThreshold = 0.65;
 inline constexpr double kFreeThreshold = 0.35;
 // A beam without a return (a max-range or out-of-range reading) is taken to have crossed free
