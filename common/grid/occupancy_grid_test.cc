@@ -316,7 +316,8 @@ TEST(OccupancyGridTest, CorridorWallsSeenAtGrazingAnglesStayWhole) {
   std::normal_distribution<double> lateral(0.0, 0.01);
   std::normal_distribution<double> heading(0.0, 0.5 * std::numbers::pi / 180.0);
   std::normal_distribution<double> range_noise(0.0, 0.01);
-  for (double x = 0.0; x <= 30.0; x += 0.1) {
+  for (int step = 0; step <= 300; ++step) {  // 10 cm apart
+    const double x = 0.1 * step;
     const Pose2 pose(x, lateral(rng), heading(rng));
     // The true rays start at the true pose (x, 0, 0); the scan is inserted at the noisy one.
     std::vector<float> ranges;
@@ -332,9 +333,9 @@ TEST(OccupancyGridTest, CorridorWallsSeenAtGrazingAnglesStayWhole) {
     grid.InsertScan(scan, pose);
   }
   int whole = 0, columns = 0;
-  for (double x = 5.0; x < 25.0; x += kRes) {
+  for (int column = 0; column < 400; ++column) {  // x from 5 to 25 m
     for (const double y : {-kHalfWidth, kHalfWidth}) {
-      const auto cell = grid.WorldToCell({x + kRes / 2, y});
+      const auto cell = grid.WorldToCell({5.0 + (column + 0.5) * kRes, y});
       ASSERT_TRUE(cell);
       ++columns;
       whole += grid.IsOccupied(cell->x(), cell->y()) || grid.IsOccupied(cell->x(), cell->y() - 1);
