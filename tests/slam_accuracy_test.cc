@@ -270,7 +270,7 @@ void UseFixedCube(LocalSearchParams& local) {
 // local search that keeps no prediction where the scan fixes nothing (local_min_constraint_ratio
 // 0), which drifts more along the hallway: with the default, the whole run ends at 0.21 against
 // 0.30 m, but one loop found ends 0.50 m off along the hallway. Its match is right; the place it
-// matched holds a 0.46 m slip of the local search (docs/accuracy.md).
+// matched holds a 0.46 m slip of the local search (docs/accuracy-history.md).
 Dataset AmbiguousDrive() {
   SimulationOptions sim;
   sim.laser.beams = 181;
@@ -341,7 +341,7 @@ std::optional<RealLog> ReadRealLog(const std::string& name) {
 // With the heading's range growing with the turn, on 6 cm cells, the local search alone does
 // about as well, and the global searches must not undo it: when this was written, fixed cube
 // 0.076 m alone and 0.0166 m with the global searches, wide cube 0.0181 m either way (on 5 cm
-// cells the wide cube's local search alone left more for them to close, docs/accuracy.md).
+// cells the wide cube's local search alone left more for them to close, docs/accuracy-history.md).
 TEST(RssSlamAccuracyTest, OnTheIntelLabTheGlobalSearchesHalveTheFixedCubesError) {
   const std::optional<RealLog> intel = ReadRealLog("intel");
   if (!intel) GTEST_SKIP() << "real data absent from " << EVOSLAM_DATA_DIR;
