@@ -28,7 +28,7 @@ struct GlobalSearchParams {
   Eigen::Vector3d sigma{0.3, 0.3, 0.3};
   // Eq. 7: weight of each corrected pose that stands on an occupied cell (002 Fig. 11: 0.5). The
   // term is a count and the loop's a length: w1 / w2 is the metres of loop miss one such pose is
-  // worth, a metre with 002's weights (docs/accuracy.md has smaller ones measured).
+  // worth, a metre with 002's weights (docs/accuracy-history.md has smaller ones measured).
   double w1 = 0.5;
   // Eq. 7: weight of the distance between two observations of one place: how far the loop's
   // later scan lands from where the match puts it, its heading's miss counted by how far it

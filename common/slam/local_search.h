@@ -42,8 +42,8 @@ struct LocalSearchParams {
   // ...and its centre moves from odometry's heading by minus this fraction of that correction:
   // as much of a turn as one step's odometry reported too much, the next tends to report too
   // little, and the other way round. 0: centred on odometry. With the default 6 cm cells 0.5
-  // keeps ACES's fast in-place turns from slipping (docs/accuracy.md); with 5 cm cells it does
-  // worse.
+  // keeps ACES's fast in-place turns from slipping (docs/accuracy-history.md); with 5 cm cells it
+  // does worse.
   double carried_turn_shift = 0.5;
   std::size_t particles = 10;  // 002
   std::size_t iterations = 30;
