@@ -300,9 +300,9 @@ TEST(LoopDetectionAccuracyTest, NoLoopFoundOnAnAmbiguousDriveIsAnotherPlace) {
 // The same ambiguous drive's loop searches, allowed to blur the map by up to 10 %: those that do
 // are applied only when they close the loop (eq. 7) by more than half. The local search is 002's
 // (the heading's range fixed, no refinement below a cell, no prediction kept where the scan fixes
-// nothing) on 5 cm cells, and revisits 10 cm off are loops, so that it leaves loops open enough
-// to search and some searches' gains fall short (with 6 cm cells, or a 15 cm tolerance, none
-// does).
+// nothing) on 5 cm cells, and revisits 10 cm off are loops however well the trajectory already
+// explains the scan, so that it leaves loops open enough to search and some searches' gains fall
+// short (with 6 cm cells, a 15 cm tolerance, or the score margin, none does).
 TEST(RssSlamAccuracyTest, ACorrectionThatBlursTheMapIsAppliedOnlyForTheMinimumEq7Gain) {
   const Dataset d = AmbiguousDrive();
   RssSlamParams params;
@@ -311,6 +311,7 @@ TEST(RssSlamAccuracyTest, ACorrectionThatBlursTheMapIsAppliedOnlyForTheMinimumEq
   params.local.min_constraint_ratio = 0.0;
   params.local.resolution = 0.05;
   params.loops.fit_tolerance = 0.1;
+  params.loops.fit_score_margin = 0.0;
   params.generations = 10;
   params.sharpness_tolerance = 0.1;
   params.min_eq7_gain = 0.5;

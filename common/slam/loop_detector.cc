@@ -40,6 +40,8 @@ void ValidateLoopDetectionParams(const LoopDetectionParams& p) {
     throw Error("loop detection: the rival distance must be positive and within the match window");
   if (!(p.fit_tolerance >= 0.0) || !(p.fit_tolerance_theta >= 0.0))
     throw Error("loop detection: the fit tolerances must not be negative");
+  if (!(p.fit_score_margin >= 0.0 && p.fit_score_margin <= 1.0))
+    throw Error("loop detection: the fit's score margin must be in [0, 1]");
   if (!IsFiniteNonNegative(p.spread_score))
     throw Error("loop detection: the spread's score scale must be finite and not negative");
 }
@@ -120,6 +122,10 @@ std::optional<LoopClosure> DetectLoop(std::span<const LaserScan> scans,
   // The shift is in the current scan's frame; the weight, in the earlier scan's.
   const Pose2 shift = poses[current].inverse() * match.pose;
   if (FitsWhereItIs(shift, poses[*earlier].theta() - poses[current].theta(), weight, params)) {
+    return std::nullopt;
+  }
+  if (params.fit_score_margin > 0.0 &&
+      place.Score(points, poses[current]) >= match.score - params.fit_score_margin) {
     return std::nullopt;
   }
   LoopConstraint constraint{*earlier, current, poses[*earlier].inverse() * match.pose};

@@ -41,7 +41,7 @@ struct LoopDetectionParams {
   // lattice pose whose score is this much below the best counts 1/e as much in the match's
   // spread (PlaceMatcher::Match), and a miss along a direction the spread is long in counts for
   // little. 0 (the default): every direction counts the same, as in 002; weighting was no
-  // better on the real logs (docs/accuracy.md).
+  // better on the real logs (docs/accuracy-history.md).
   double spread_score = 0.0;
   // With spread_score above 0, false weighs the fit test alone: a shift along a corridor the match
   // cannot pin is not taken as drift, and the loops found are closed as 002 closes them.
@@ -51,6 +51,12 @@ struct LoopDetectionParams {
   // along the corridor (docs/rss_slam.md): a shift within that is the match's error, not drift.
   double fit_tolerance = 0.15;        // m
   double fit_tolerance_theta = 0.02;  // rad
+  // ...nor when the pose the trajectory gives the scan scores within this much of the match
+  // (PlaceMatcher::Score, 0 to 1): the trajectory already explains the scan about as well, and a
+  // shift the score barely tells apart is the match's noise. With a noisy or sparse laser such
+  // matches land farther from the truth than the trajectory had the scan (docs/rss_slam.md).
+  // 0: off.
+  double fit_score_margin = 0.025;
   // Scans after a detection before the next one may be reported.
   std::size_t cooldown = 100;
   // A revisit is checked at every this many scans: matching costs milliseconds, and the robot

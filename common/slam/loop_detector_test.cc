@@ -102,6 +102,22 @@ TEST(LoopDetectorTest, ARevisitThatFitsIsNoLoop) {
   EXPECT_FALSE(DetectLoop(r.log.scans, poses, r.later, {}).has_value());
 }
 
+// A revisit just past the heading's fit tolerance, where the trajectory's pose explains the scan
+// about as well as the match: a loop by the shift alone, none with a score margin. A drift the
+// scan shows plainly stays a loop with the same margin.
+TEST(LoopDetectorTest, AScoreMarginTakesARevisitTheTrajectoryExplainsAsFitting) {
+  const Revisit r = DriveBack();
+  std::vector<Pose2> poses(r.truth.begin(), r.truth.begin() + r.later + 1);
+  poses.back() = poses.back() * Pose2(0.0, 0.0, 0.03);
+  LoopDetectionParams params;
+  params.fit_score_margin = 0.0;
+  ASSERT_TRUE(DetectLoop(r.log.scans, poses, r.later, params).has_value());
+  params.fit_score_margin = 0.15;  // the two score 0.97 and 0.86
+  EXPECT_FALSE(DetectLoop(r.log.scans, poses, r.later, params).has_value());
+  poses.back() = r.truth[r.later] * Pose2(0.4, -0.2, 0.1);
+  EXPECT_TRUE(DetectLoop(r.log.scans, poses, r.later, params).has_value());
+}
+
 TEST(LoopDetectorTest, RecentPosesAndFarPlacesAreNoRevisit) {
   const Revisit r = DriveBack();
   std::vector<Pose2> poses(r.truth.begin(), r.truth.begin() + r.later + 1);
@@ -204,6 +220,9 @@ TEST(LoopDetectorTest, RefusesBadParametersAndScansWithoutPoses) {
   EXPECT_THROW(ValidateLoopDetectionParams(params), Error);
   params = {};
   params.spread_score = -0.01;
+  EXPECT_THROW(ValidateLoopDetectionParams(params), Error);
+  params = {};
+  params.fit_score_margin = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(ValidateLoopDetectionParams(params), Error);
 }
 
