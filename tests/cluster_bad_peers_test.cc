@@ -212,13 +212,8 @@ TEST_F(ServiceTest, TheWorkerSocketDropsGarbageAndTheServiceGoesOn) {
 // task to another, is not listened to: here the answers are failures, which would fail the job
 // if they were taken.
 TEST_F(ServiceTest, AnswersFromAWorkerThatDoesNotHoldTheTaskAreDropped) {
-  const Job job{.scans = Scans(20)};
-  const fs::path reference = Reference(job);
-  const CoordinatorProcess c = StartCoordinator("coordinator");
-  auto client = Client(c.clients);
-  const std::string job_id = SubmitDetached(job, c.clients);
-
-  const auto fake_worker = FakeWorker(c.workers);
+  SubmittedJob job = SubmitWithNoWorkers({.scans = Scans(20)});
+  const auto fake_worker = FakeWorker(job.coordinator.workers);
   RawDealer& fake = *fake_worker;
   const std::optional<proto::Task> task = AwaitTask(fake);
   ASSERT_TRUE(task);
@@ -229,7 +224,8 @@ TEST_F(ServiceTest, AnswersFromAWorkerThatDoesNotHoldTheTaskAreDropped) {
     return evoslam::Encode(m);
   };
   const auto logged = [&](const std::string& what) {
-    return WaitUntil([&] { return c.process->Log().find(what) != std::string::npos; }, 10s);
+    return WaitUntil([&] { return job.coordinator.process->Log().find(what) != std::string::npos; },
+                     10s);
   };
   fake.Send({failure("t-999999")});
   EXPECT_TRUE(logged("dropped an answer for t-999999"));
@@ -237,10 +233,10 @@ TEST_F(ServiceTest, AnswersFromAWorkerThatDoesNotHoldTheTaskAreDropped) {
   EXPECT_TRUE(logged("its task " + task->task_id() + " goes to another"));
   fake.Send({failure(task->task_id())});
   EXPECT_TRUE(logged("dropped a late answer for " + task->task_id()));
-  EXPECT_FALSE(Finished(client.Status(job_id))) << Describe(client.Status(job_id));
+  EXPECT_FALSE(Finished(job.client.Status(job.id))) << Describe(job.client.Status(job.id));
 
-  StartWorker("worker1", c.workers);
-  ExpectSucceedsLike(client, job_id, reference);
+  StartWorker("worker1", job.coordinator.workers);
+  ExpectSucceedsLike(job.client, job.id, job.reference);
 }
 
 // A worker dropped for silence and then woken answers two requests for a new start with two
@@ -249,13 +245,8 @@ TEST_F(ServiceTest, AnswersFromAWorkerThatDoesNotHoldTheTaskAreDropped) {
 // by a fake worker, it must not take that task back and send another to a busy worker (which
 // would refuse it, and the refusal would fail the job).
 TEST_F(ServiceTest, ARepeatedReadyDoesNotTakeBackTheTaskOnItsWayToTheWorker) {
-  const Job job{.scans = Scans(10)};
-  const fs::path reference = Reference(job);
-  const CoordinatorProcess c = StartCoordinator("coordinator");
-  auto client = Client(c.clients);
-  const std::string job_id = SubmitDetached(job, c.clients);
-
-  RawDealer fake(context_, c.workers);
+  SubmittedJob job = SubmitWithNoWorkers({.scans = Scans(10)});
+  RawDealer fake(context_, job.coordinator.workers);
   proto::WorkerMessage ready;
   ready.mutable_ready()->set_hostname("fake");
   ready.mutable_ready()->set_threads(1);
@@ -288,7 +279,7 @@ TEST_F(ServiceTest, ARepeatedReadyDoesNotTakeBackTheTaskOnItsWayToTheWorker) {
   const std::vector<proto::Task> more = tasks_within(1s);
   EXPECT_TRUE(more.empty()) << "a worker that holds " << first[0].task_id() << " was sent "
                             << more.size() << " more, the first " << more[0].task_id();
-  const auto workers = client.Workers();
+  const auto workers = job.client.Workers();
   ASSERT_EQ(workers.size(), 1u);
   EXPECT_TRUE(workers[0].busy());
   EXPECT_EQ(workers[0].worker_id(), "w-1") << "a repeated Ready made a new worker";
@@ -298,21 +289,16 @@ TEST_F(ServiceTest, ARepeatedReadyDoesNotTakeBackTheTaskOnItsWayToTheWorker) {
   bye.mutable_disconnect()->set_reason("test over");
   bye.mutable_disconnect()->set_handed_back_task_id(first[0].task_id());
   fake.Send({evoslam::Encode(bye)});
-  StartWorker("worker1", c.workers);
-  ExpectSucceedsLike(client, job_id, reference);
+  StartWorker("worker1", job.coordinator.workers);
+  ExpectSucceedsLike(job.client, job.id, job.reference);
 }
 
 // A worker that refuses a task because it is busy (with work the coordinator no longer counts
 // on) does not fail the job: the task goes to another worker, and the busy one is asked to
 // introduce itself again.
 TEST_F(ServiceTest, ABusyWorkersRefusalSendsTheTaskElsewhere) {
-  const Job job{.scans = Scans(10)};
-  const fs::path reference = Reference(job);
-  const CoordinatorProcess c = StartCoordinator("coordinator");
-  auto client = Client(c.clients);
-  const std::string job_id = SubmitDetached(job, c.clients);
-
-  const auto fake_worker = FakeWorker(c.workers);
+  SubmittedJob job = SubmitWithNoWorkers({.scans = Scans(10)});
+  const auto fake_worker = FakeWorker(job.coordinator.workers);
   RawDealer& fake = *fake_worker;
   const std::optional<proto::Task> task = AwaitTask(fake);
   ASSERT_TRUE(task);
@@ -331,10 +317,10 @@ TEST_F(ServiceTest, ABusyWorkersRefusalSendsTheTaskElsewhere) {
         return told;
       },
       10s));
-  EXPECT_TRUE(client.Workers().empty());
+  EXPECT_TRUE(job.client.Workers().empty());
 
-  StartWorker("worker1", c.workers);
-  ExpectSucceedsLike(client, job_id, reference);
+  StartWorker("worker1", job.coordinator.workers);
+  ExpectSucceedsLike(job.client, job.id, job.reference);
 }
 
 // ---- CURVE ----

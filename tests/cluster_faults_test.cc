@@ -7,25 +7,18 @@ namespace evoslam::service_test {
 namespace {
 
 TEST_F(ServiceTest, AJobOutlivesAWorkerKilledMidJob) {
-  const fs::path reference = Reference(kLongJob);
-  const CoordinatorProcess c = StartCoordinator("coordinator");
-  ChildProcess& victim = StartWorker("worker1", c.workers);
-  StartWorker("worker2", c.workers);
-  auto client = Client(c.clients);
-  WaitForWorkers(client, 2);
-
-  const std::string job_id = SubmitDetached(kLongJob, c.clients);
-  const proto::JobStatus before = WaitForProgress(client, job_id);
+  JobUnderWay job = StartOnTwoWorkers(kLongJob);
+  ChildProcess& victim = job.worker1;
   ASSERT_TRUE(victim.Kill(SIGKILL));
   ASSERT_TRUE(victim.Wait(5s));
-  const proto::JobStatus end = WaitForEnd(client, job_id);
+  const proto::JobStatus end = WaitForEnd(job.client, job.id);
   ASSERT_EQ(end.state(), proto::JOB_STATE_SUCCEEDED) << Describe(end);
   EXPECT_EQ(end.done(), end.total());
-  EXPECT_LT(before.done(), end.total());
-  FetchResult(client, job_id, Path("result"));
-  ExpectSameTrajectory(reference, Path("result"));
-  EXPECT_TRUE(WaitUntil([&] { return client.Workers().size() == 1; }, 5s));
-  EXPECT_TRUE(c.process->Alive());
+  EXPECT_LT(job.progress.done(), end.total());
+  FetchResult(job.client, job.id, Path("result"));
+  ExpectSameTrajectory(job.reference, Path("result"));
+  EXPECT_TRUE(WaitUntil([&] { return job.client.Workers().size() == 1; }, 5s));
+  EXPECT_TRUE(job.coordinator.process->Alive());
 }
 
 TEST_F(ServiceTest, AJobResumesFromItsCheckpointAfterTheCoordinatorIsKilledAndRestarted) {
@@ -73,15 +66,9 @@ TEST_F(ServiceTest, AJobResumesFromItsCheckpointAfterTheCoordinatorIsKilledAndRe
 }
 
 TEST_F(ServiceTest, AStoppedWorkersTaskGoesToAnotherAndTheWorkerRejoinsWhenContinued) {
-  const fs::path reference = Reference(kLongJob);
-  const CoordinatorProcess c = StartCoordinator("coordinator");
-  ChildProcess& paused = StartWorker("worker1", c.workers);
-  ChildProcess& other = StartWorker("worker2", c.workers);
-  auto client = Client(c.clients);
-  WaitForWorkers(client, 2);
-
-  const std::string job_id = SubmitDetached(kLongJob, c.clients);
-  WaitForProgress(client, job_id);
+  JobUnderWay job = StartOnTwoWorkers(kLongJob);
+  ChildProcess& paused = job.worker1;
+  ChildProcess& other = job.worker2;
   ASSERT_TRUE(paused.Kill(SIGSTOP));
   // The stopped worker holds a task: the one it had, or the next one the coordinator hands it
   // before it notices the silence (the islands keep both workers busy). After `liveness` missed
@@ -92,20 +79,20 @@ TEST_F(ServiceTest, AStoppedWorkersTaskGoesToAnotherAndTheWorkerRejoinsWhenConti
   std::string log;
   ASSERT_TRUE(WaitUntil(
       [&] {
-        log = c.process->Log();
+        log = job.coordinator.process->Log();
         return std::regex_search(log, lost, kLost);
       },
       10s));
   const std::string task = lost[2];
-  ExpectSucceedsLike(client, job_id, reference);
-  EXPECT_EQ(client.Workers().size(), 1u);
+  ExpectSucceedsLike(job.client, job.id, job.reference);
+  EXPECT_EQ(job.client.Workers().size(), 1u);
 
   ASSERT_TRUE(paused.Kill(SIGCONT));
   // It says Ready again and is listed again.
   CommandResult listed;
   EXPECT_TRUE(WaitUntil(
       [&] {
-        listed = Cli({"workers", "--coordinator", c.clients, "--timeout", "10"});
+        listed = Cli({"workers", "--coordinator", job.coordinator.clients, "--timeout", "10"});
         return listed.exit_code == 0 && Count(listed.output, " threads ") == 2;
       },
       10s, 100ms))
@@ -113,7 +100,7 @@ TEST_F(ServiceTest, AStoppedWorkersTaskGoesToAnotherAndTheWorkerRejoinsWhenConti
   // Its answer to the task it held is never taken. Either the coordinator drops it (it no longer
   // knows the worker), or the worker, told by the coordinator that its task went elsewhere,
   // throws it away itself; which of the two comes first is a race between the worker's threads.
-  const std::string coordinator_log = c.process->Log();
+  const std::string coordinator_log = job.coordinator.process->Log();
   const bool dropped =
       coordinator_log.find("dropped a late answer for " + task) != std::string::npos ||
       coordinator_log.find("dropped an answer for " + task) != std::string::npos;
@@ -123,9 +110,9 @@ TEST_F(ServiceTest, AStoppedWorkersTaskGoesToAnotherAndTheWorkerRejoinsWhenConti
   // The worker that came back does work: alone, it runs the next job.
   ASSERT_TRUE(other.Kill(SIGTERM));
   ASSERT_TRUE(other.Wait(10s));
-  WaitForWorkers(client, 1);
+  WaitForWorkers(job.client, 1);
   const Job small{.scans = Scans(10)};
-  const CommandResult r = Cli(RemoteArgs(small, Path("after"), c.clients));
+  const CommandResult r = Cli(RemoteArgs(small, Path("after"), job.coordinator.clients));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   ExpectSameTrajectory(Reference(small), Path("after"));
 }
@@ -133,39 +120,28 @@ TEST_F(ServiceTest, AStoppedWorkersTaskGoesToAnotherAndTheWorkerRejoinsWhenConti
 // A worker paused past its deadline and resumed while the job still runs comes back with a
 // stale task in hand and a stale view of the coordinator; none of it may change the job.
 TEST_F(ServiceTest, AWorkerPausedAndResumedMidJobDoesNotChangeItsResult) {
-  Job job = kLongJob;
-  job.scans = Scans(90);
-  const fs::path reference = Reference(job);
-  const CoordinatorProcess c = StartCoordinator("coordinator");
-  ChildProcess& paused = StartWorker("worker1", c.workers);
-  StartWorker("worker2", c.workers);
-  auto client = Client(c.clients);
-  WaitForWorkers(client, 2);
-
-  const std::string job_id = SubmitDetached(job, c.clients);
-  WaitForProgress(client, job_id);
+  Job longer = kLongJob;
+  longer.scans = Scans(90);
+  JobUnderWay job = StartOnTwoWorkers(longer);
+  ChildProcess& paused = job.worker1;
   std::size_t rounds = 0;
-  for (; rounds < 3 && !Finished(client.Status(job_id)); ++rounds) {
+  for (; rounds < 3 && !Finished(job.client.Status(job.id)); ++rounds) {
     ASSERT_TRUE(paused.Kill(SIGSTOP));
     ASSERT_TRUE(WaitUntil(
-        [&] { return Count(c.process->Log(), "is lost (silent or overdue)") > rounds; }, 10s));
+        [&] {
+          return Count(job.coordinator.process->Log(), "is lost (silent or overdue)") > rounds;
+        },
+        10s));
     ASSERT_TRUE(paused.Kill(SIGCONT));
-    ASSERT_TRUE(WaitUntil([&] { return client.Workers().size() == 2; }, 10s));
+    ASSERT_TRUE(WaitUntil([&] { return job.client.Workers().size() == 2; }, 10s));
   }
   EXPECT_GE(rounds, 2u) << "the job ended too soon to be disturbed";
-  ExpectSucceedsLike(client, job_id, reference);
+  ExpectSucceedsLike(job.client, job.id, job.reference);
 }
 
 TEST_F(ServiceTest, AWorkerStoppedWithSigtermFinishesItsTaskAndLeavesCleanly) {
-  const fs::path reference = Reference(kLongJob);
-  const CoordinatorProcess c = StartCoordinator("coordinator");
-  ChildProcess& leaving = StartWorker("worker1", c.workers, {"--grace", "2"});
-  StartWorker("worker2", c.workers);
-  auto client = Client(c.clients);
-  WaitForWorkers(client, 2);
-
-  const std::string job_id = SubmitDetached(kLongJob, c.clients);
-  WaitForProgress(client, job_id);
+  JobUnderWay job = StartOnTwoWorkers(kLongJob, {"--grace", "2"});
+  ChildProcess& leaving = job.worker1;
   ASSERT_TRUE(leaving.Kill(SIGTERM));
   const auto status = leaving.Wait(2s + 3s);  // its grace, and a margin for a loaded machine
   ASSERT_TRUE(status) << "still running after its grace";
@@ -174,22 +150,18 @@ TEST_F(ServiceTest, AWorkerStoppedWithSigtermFinishesItsTaskAndLeavesCleanly) {
   EXPECT_EQ(leaving.Log().find("handing task"), std::string::npos)
       << "a task of milliseconds was handed back instead of finished within 2 s";
   EXPECT_TRUE(WaitUntil(
-      [&] { return c.process->Log().find("left: worker stopping") != std::string::npos; }, 5s));
+      [&] {
+        return job.coordinator.process->Log().find("left: worker stopping") != std::string::npos;
+      },
+      5s));
 
-  ExpectSucceedsLike(client, job_id, reference);
-  EXPECT_EQ(client.Workers().size(), 1u);
+  ExpectSucceedsLike(job.client, job.id, job.reference);
+  EXPECT_EQ(job.client.Workers().size(), 1u);
 }
 
 TEST_F(ServiceTest, AWorkerStoppedWithSigtermAndNoGraceHandsItsTaskBack) {
-  const fs::path reference = Reference(kLongJob);
-  const CoordinatorProcess c = StartCoordinator("coordinator");
-  ChildProcess& leaving = StartWorker("worker1", c.workers, {"--grace", "0"});
-  StartWorker("worker2", c.workers);
-  auto client = Client(c.clients);
-  WaitForWorkers(client, 2);
-
-  const std::string job_id = SubmitDetached(kLongJob, c.clients);
-  WaitForProgress(client, job_id);
+  JobUnderWay job = StartOnTwoWorkers(kLongJob, {"--grace", "0"});
+  ChildProcess& leaving = job.worker1;
   ASSERT_TRUE(leaving.Kill(SIGTERM));
   const auto status = leaving.Wait(3s);
   ASSERT_TRUE(status) << "still running";
@@ -202,12 +174,12 @@ TEST_F(ServiceTest, AWorkerStoppedWithSigtermAndNoGraceHandsItsTaskBack) {
     const std::string task = handed[1];
     EXPECT_TRUE(WaitUntil(
         [&] {
-          return c.process->Log().find("(its task " + task + " goes to another)") !=
+          return job.coordinator.process->Log().find("(its task " + task + " goes to another)") !=
                  std::string::npos;
         },
         5s));
   }
-  ExpectSucceedsLike(client, job_id, reference);
+  ExpectSucceedsLike(job.client, job.id, job.reference);
 }
 
 }  // namespace

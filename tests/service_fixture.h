@@ -24,6 +24,7 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "common/localization/localize_params.h"
@@ -210,6 +211,21 @@ struct CommandResult {
   int exit_code = -1;
   std::string output;  // stdout and stderr
   double seconds = 0;
+};
+
+// A job submitted to a coordinator of its own, and what a test follows and checks it with.
+struct SubmittedJob {
+  CoordinatorProcess coordinator;
+  evoslam::ServiceClient client;  // on the coordinator's client socket
+  std::string id;
+  fs::path reference;  // the embedded run's outputs: what the job must write
+};
+
+// A job under way on two workers, for a test to disturb.
+struct JobUnderWay : SubmittedJob {
+  ChildProcess& worker1;
+  ChildProcess& worker2;
+  proto::JobStatus progress;  // its status when first seen under way
 };
 
 class ServiceTest : public ::testing::Test {
@@ -423,6 +439,25 @@ class ServiceTest : public ::testing::Test {
     return s;
   }
 
+  // Starts `job` on a new coordinator's two workers, "worker1" (started with `worker1_extra`)
+  // and "worker2", and returns once it is under way; throws when it ends before it can be
+  // disturbed.
+  JobUnderWay StartOnTwoWorkers(const Job& job,
+                                const std::vector<std::string>& worker1_extra = {}) {
+    fs::path reference = Reference(job);
+    const CoordinatorProcess coordinator = StartCoordinator("coordinator");
+    ChildProcess& worker1 = StartWorker("worker1", coordinator.workers, worker1_extra);
+    ChildProcess& worker2 = StartWorker("worker2", coordinator.workers);
+    evoslam::ServiceClient client = Client(coordinator.clients);
+    WaitForWorkers(client, 2);
+    std::string id = SubmitDetached(job, coordinator.clients);
+    proto::JobStatus progress = WaitForProgress(client, id);
+    return {{coordinator, std::move(client), std::move(id), std::move(reference)},
+            worker1,
+            worker2,
+            std::move(progress)};
+  }
+
   // Kills the coordinator with SIGKILL mid-job, restarts it on the same database and endpoints
   // (the workers find it again by themselves) and follows the job to its end: it must resume
   // from its checkpoint and succeed, its progress in `before`'s phase never going back towards
@@ -471,6 +506,16 @@ class ServiceTest : public ::testing::Test {
     ASSERT_EQ(end.state(), proto::JOB_STATE_SUCCEEDED) << Describe(end);
     FetchResult(client, job_id, Path("result"));
     ExpectSameTrajectory(reference, Path("result"));
+  }
+
+  // Submits `job` to a new coordinator that has no worker yet: the first to say Ready, often one
+  // the test plays, is handed its first task.
+  SubmittedJob SubmitWithNoWorkers(const Job& job) {
+    fs::path reference = Reference(job);
+    const CoordinatorProcess coordinator = StartCoordinator("coordinator");
+    evoslam::ServiceClient client = Client(coordinator.clients);
+    std::string id = SubmitDetached(job, coordinator.clients);
+    return {coordinator, std::move(client), std::move(id), std::move(reference)};
   }
 
   // A raw DEALER on the worker socket that has said Ready: a worker the test plays itself.
