@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -26,8 +27,8 @@ struct Result {
   std::string output;  // stdout and stderr
 };
 
-Result RunCli(const std::string& args) {
-  const std::string command = std::string(EVOSLAM_CLI) + " " + args + " 2>&1";
+Result RunCommand(const std::string& command_line) {
+  const std::string command = command_line + " 2>&1";
   Result r;
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return {-1, "popen failed"};
@@ -36,6 +37,13 @@ Result RunCli(const std::string& args) {
   const int raw = pclose(pipe);
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   return r;
+}
+
+Result RunCli(const std::string& args) { return RunCommand(std::string(EVOSLAM_CLI) + " " + args); }
+
+// bench/seed_sweep.sh with this build's evoslam.
+Result RunSweep(const std::string& args) {
+  return RunCommand(std::string(EVOSLAM_SEED_SWEEP) + " --evoslam " + EVOSLAM_CLI + " " + args);
 }
 
 class CliTest : public ::testing::Test {
@@ -377,6 +385,65 @@ TEST_F(CliTest, SlamMapsASimulatedWorld) {
   EXPECT_EQ(local_report.global_searches_size(), 0);
   EXPECT_EQ(local_report.global_evaluations(), 0u);
   EXPECT_EQ(evoslam::ReadTrajectory(dir_ / "local" / "trajectory.txt").size(), 120u);
+}
+
+// bench/seed_sweep.sh, which made accuracy.md's per-seed tables: each row is the error its run
+// reported, the last line their statistics, and running seeds side by side changes neither.
+TEST_F(CliTest, SeedSweepReportsEachSeedsErrorAndTheirSpread) {
+  const std::string slam = " -- --max-scans 100 --local-only";
+  const Result one = RunSweep("1-3 " + Path("one") + slam);
+  ASSERT_EQ(one.status, 0) << one.output;
+  const Result two = RunSweep("-j 2 1,2-3 " + Path("two") + slam);
+  ASSERT_EQ(two.status, 0) << two.output;
+  EXPECT_EQ(ReadAll(dir_ / "two" / "sweep.tsv"), ReadAll(dir_ / "one" / "sweep.tsv"));
+
+  std::istringstream tsv(ReadAll(dir_ / "one" / "sweep.tsv"));
+  std::string header;
+  std::getline(tsv, header);
+  EXPECT_EQ(header, "seed\terror\tunit\tloops\tsearches_applied");
+  std::vector<double> errors;
+  for (int seed = 1; seed <= 3; ++seed) {
+    int read_seed = 0;
+    double error = 0;
+    std::string unit;
+    ASSERT_TRUE(tsv >> read_seed >> error >> unit) << "no row for seed " << seed;
+    std::getline(tsv, header);
+    EXPECT_EQ(read_seed, seed);
+    EXPECT_EQ(unit, "cm");
+    const auto report =
+        ReadSlamReport(dir_ / "one" / ("seed-" + std::to_string(seed)) / "report.json");
+    EXPECT_NEAR(error, 100 * report.absolute_errors().aligned_rms_translation_m(), 1e-9);
+    errors.push_back(error);
+  }
+  ASSERT_NE(errors[0], errors[1]) << "the seeds should differ for the statistics to mean much";
+  const double mean = (errors[0] + errors[1] + errors[2]) / 3;
+  std::vector<double> sorted = errors;
+  std::sort(sorted.begin(), sorted.end());
+  const auto best = std::min_element(errors.begin(), errors.end()) - errors.begin();
+  const auto worst = std::max_element(errors.begin(), errors.end()) - errors.begin();
+  char expected[200];
+  std::snprintf(expected, sizeof expected,
+                "3 seeds: mean %.3f cm, median %.3f, best %.2f (seed %d), worst %.2f (seed %d)\n",
+                mean, sorted[1], errors[best], static_cast<int>(best) + 1, errors[worst],
+                static_cast<int>(worst) + 1);
+  EXPECT_NE(one.output.find(expected), std::string::npos) << expected << one.output;
+}
+
+// A seed whose run fails is named with the run's error, and the sweep fails; usage errors are
+// refused before anything runs.
+TEST_F(CliTest, SeedSweepNamesTheSeedsThatFailed) {
+  const Result failed = RunSweep("4 " + Path("bad") + " -- --log " + Path("missing.clf"));
+  EXPECT_EQ(failed.status, 1) << failed.output;
+  EXPECT_NE(failed.output.find("seed 4 failed: evoslam: error: " + Path("missing.clf")),
+            std::string::npos)
+      << failed.output;
+
+  const Result usage = RunSweep("1-3 " + Path("usage"));
+  EXPECT_EQ(usage.status, 2) << usage.output;
+  EXPECT_NE(usage.output.find("expected SEEDS OUT -- SLAM_ARGS"), std::string::npos)
+      << usage.output;
+  EXPECT_FALSE(fs::exists(dir_ / "usage"));
+  EXPECT_EQ(RunSweep("3-1 " + Path("usage") + " --").status, 2);
 }
 
 // A disk that fills while the results are written fails the run, naming the file: a run that
