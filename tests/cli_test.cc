@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -444,6 +445,53 @@ TEST_F(CliTest, SeedSweepNamesTheSeedsThatFailed) {
       << usage.output;
   EXPECT_FALSE(fs::exists(dir_ / "usage"));
   EXPECT_EQ(RunSweep("3-1 " + Path("usage") + " --").status, 2);
+}
+
+// bench/compare_sweeps.sh pairs two sweeps' errors by seed, over the seeds both hold.
+TEST_F(CliTest, CompareSweepsPairsTheSeedsBothSweepsHold) {
+  const std::string header = "seed\terror\tunit\tloops\tsearches_applied\n";
+  fs::create_directory(dir_ / "before");
+  std::ofstream(dir_ / "before" / "sweep.tsv")
+      << header << "1\t0.020\tm\t3\t3\n2\t0.018\tm\t2\t2\n3\t0.025\tm\t5\t4\n"
+      << "4\t0.017\tm\t1\t1\n";
+  std::ofstream(Path("after.tsv")) << header << "2\t0.018\tm\t2\t2\n3\t0.019\tm\t4\t4\n"
+                                   << "4\t0.0175\tm\t1\t1\n5\t0.030\tm\t9\t9\n";
+  const Result r = RunCommand(std::string(EVOSLAM_COMPARE_SWEEPS) + " " + Path("before") + " " +
+                              Path("after.tsv"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  // Seeds 2, 3 and 4: one the same, one better, one worse.
+  const std::array<double, 3> before{0.018, 0.025, 0.017}, after{0.018, 0.019, 0.0175};
+  std::array<double, 3> d;
+  for (std::size_t i = 0; i < 3; ++i) d[i] = after[i] - before[i];
+  const double mean = (d[0] + d[1] + d[2]) / 3;
+  double squares = 0;
+  for (const double x : d) squares += (x - mean) * (x - mean);
+  const double t = mean / std::sqrt(squares / 2 / 3);
+  char expected[240];
+  std::snprintf(expected, sizeof expected,
+                "3 seeds in both: mean %.5f -> %.5f m, median %.5f -> %.5f\n"
+                "paired difference %.5f m (t = %.2f over 3 seeds); better 1, worse 1, the same 1\n",
+                (before[0] + before[1] + before[2]) / 3, (after[0] + after[1] + after[2]) / 3,
+                before[0], after[0], mean, t);
+  EXPECT_NE(r.output.find(expected), std::string::npos) << expected << r.output;
+  EXPECT_NE(r.output.find("seed 3      0.0250 -> 0.0190 m\n"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("seed 1 "), std::string::npos) << "seed 1 is in one sweep only";
+
+  std::ofstream(Path("cm.tsv")) << header << "3\t2.5\tcm\t0\t0\n";
+  const Result units =
+      RunCommand(std::string(EVOSLAM_COMPARE_SWEEPS) + " " + Path("before") + " " + Path("cm.tsv"));
+  EXPECT_EQ(units.status, 2) << units.output;
+  EXPECT_NE(units.output.find("seed 3 is in m in"), std::string::npos) << units.output;
+  std::ofstream(Path("other.tsv")) << header << "9\t0.02\tm\t0\t0\n";
+  EXPECT_EQ(RunCommand(std::string(EVOSLAM_COMPARE_SWEEPS) + " " + Path("before") + " " +
+                       Path("other.tsv"))
+                .status,
+            1);
+  const Result missing = RunCommand(std::string(EVOSLAM_COMPARE_SWEEPS) + " " + Path("before") +
+                                    " " + Path("nowhere"));
+  EXPECT_EQ(missing.status, 2) << missing.output;
+  EXPECT_NE(missing.output.find(Path("nowhere") + "' is neither"), std::string::npos)
+      << missing.output;
 }
 
 // A disk that fills while the results are written fails the run, naming the file: a run that
