@@ -47,6 +47,11 @@ Result RunSweep(const std::string& args) {
   return RunCommand(std::string(EVOSLAM_SEED_SWEEP) + " --evoslam " + EVOSLAM_CLI + " " + args);
 }
 
+// bench/compare_sweeps.sh on two sweeps.
+Result RunCompare(const std::string& before, const std::string& after) {
+  return RunCommand(std::string(EVOSLAM_COMPARE_SWEEPS) + " " + before + " " + after);
+}
+
 class CliTest : public ::testing::Test {
  protected:
   std::string Path(const std::string& name) const { return (dir_ / name).string(); }
@@ -456,8 +461,7 @@ TEST_F(CliTest, CompareSweepsPairsTheSeedsBothSweepsHold) {
       << "4\t0.017\tm\t1\t1\n";
   std::ofstream(Path("after.tsv")) << header << "2\t0.018\tm\t2\t2\n3\t0.019\tm\t4\t4\n"
                                    << "4\t0.0175\tm\t1\t1\n5\t0.030\tm\t9\t9\n";
-  const Result r = RunCommand(std::string(EVOSLAM_COMPARE_SWEEPS) + " " + Path("before") + " " +
-                              Path("after.tsv"));
+  const Result r = RunCompare(Path("before"), Path("after.tsv"));
   ASSERT_EQ(r.status, 0) << r.output;
   // Seeds 2, 3 and 4: one the same, one better, one worse.
   const std::array<double, 3> before{0.018, 0.025, 0.017}, after{0.018, 0.019, 0.0175};
@@ -478,17 +482,12 @@ TEST_F(CliTest, CompareSweepsPairsTheSeedsBothSweepsHold) {
   EXPECT_EQ(r.output.find("seed 1 "), std::string::npos) << "seed 1 is in one sweep only";
 
   std::ofstream(Path("cm.tsv")) << header << "3\t2.5\tcm\t0\t0\n";
-  const Result units =
-      RunCommand(std::string(EVOSLAM_COMPARE_SWEEPS) + " " + Path("before") + " " + Path("cm.tsv"));
+  const Result units = RunCompare(Path("before"), Path("cm.tsv"));
   EXPECT_EQ(units.status, 2) << units.output;
   EXPECT_NE(units.output.find("seed 3 is in m in"), std::string::npos) << units.output;
   std::ofstream(Path("other.tsv")) << header << "9\t0.02\tm\t0\t0\n";
-  EXPECT_EQ(RunCommand(std::string(EVOSLAM_COMPARE_SWEEPS) + " " + Path("before") + " " +
-                       Path("other.tsv"))
-                .status,
-            1);
-  const Result missing = RunCommand(std::string(EVOSLAM_COMPARE_SWEEPS) + " " + Path("before") +
-                                    " " + Path("nowhere"));
+  EXPECT_EQ(RunCompare(Path("before"), Path("other.tsv")).status, 1);
+  const Result missing = RunCompare(Path("before"), Path("nowhere"));
   EXPECT_EQ(missing.status, 2) << missing.output;
   EXPECT_NE(missing.output.find(Path("nowhere") + "' is neither"), std::string::npos)
       << missing.output;
