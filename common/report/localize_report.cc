@@ -47,6 +47,7 @@ proto::OdometryStallRecord ToProto(const OdometryStall& stall) {
   p.set_last(static_cast<std::uint32_t>(stall.last));
   p.set_catch_up_m(stall.catch_up.translation().norm());
   p.set_catch_up_rad(stall.catch_up.theta());
+  p.set_position_only(!stall.heading_held);
   return p;
 }
 
@@ -113,7 +114,8 @@ std::string FormatOdometryStalls(
   s << "  odometry stalled while the robot moved, filled in by time: scans ";
   const char* separator = "";
   for (const auto& stall : stalls) {
-    s << separator << stall.first() << " to " << stall.last() << " (then " << std::setprecision(2)
+    s << separator << stall.first() << " to " << stall.last() << " ("
+      << (stall.position_only() ? "position only, " : "") << "then " << std::setprecision(2)
       << stall.catch_up_m() << " m and " << std::setprecision(1) << Degrees(stall.catch_up_rad())
       << " deg)";
     separator = ", ";

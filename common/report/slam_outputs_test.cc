@@ -319,20 +319,25 @@ TEST_F(SlamOutputsTest, SummarySaysWhatRanWhatItFoundAndHowWell) {
 
 TEST_F(SlamOutputsTest, TheReportAndSummaryNameWhereTheOdometryStalled) {
   RssSlamResult result = ResultAtTruth(log_);
-  result.odometry_stalls = {{.first = 4, .last = 7, .catch_up = Pose2(0.8, 0.1, -0.5)},
-                            {.first = 12, .last = 12, .catch_up = Pose2(0.0, 0.0, 1.5)}};
+  result.odometry_stalls = {
+      {.first = 4, .last = 7, .catch_up = Pose2(0.8, 0.1, -0.5)},
+      {.first = 12, .last = 12, .catch_up = Pose2(0.0, 0.0, 1.5)},
+      {.first = 20, .last = 21, .catch_up = Pose2(0.6, 0.0, 0.1), .heading_held = false}};
   const std::string s =
       Write(SlamOutputs(log_, Params(), result, std::nullopt, 2)).at("summary.txt");
   EXPECT_NE(s.find("odometry stalled while the robot moved, filled in by time: scans 4 to 7 "
-                   "(then 0.81 m and -28.6 deg), 12 to 12 (then 0.00 m and 85.9 deg)\n"),
+                   "(then 0.81 m and -28.6 deg), 12 to 12 (then 0.00 m and 85.9 deg), 20 to 21 "
+                   "(position only, then 0.60 m and 5.7 deg)\n"),
             std::string::npos)
       << s;
   const proto::SlamReport r = ReadReport();
-  ASSERT_EQ(r.odometry_stalls_size(), 2);
+  ASSERT_EQ(r.odometry_stalls_size(), 3);
   EXPECT_EQ(r.odometry_stalls(0).first(), 4u);
   EXPECT_EQ(r.odometry_stalls(0).last(), 7u);
   EXPECT_DOUBLE_EQ(r.odometry_stalls(0).catch_up_m(), std::hypot(0.8, 0.1));
   EXPECT_DOUBLE_EQ(r.odometry_stalls(1).catch_up_rad(), 1.5);
+  EXPECT_FALSE(r.odometry_stalls(1).position_only());
+  EXPECT_TRUE(r.odometry_stalls(2).position_only());
   // Without stalls the summary says nothing of them.
   EXPECT_EQ(Write(SlamOutputs(log_, Params(), result_, std::nullopt, 2))
                 .at("summary.txt")

@@ -75,12 +75,14 @@ TEST(DatasetSummaryTest, CountsTheRunsOfRepeatedOdometryAndTheStepsThatEndThem) 
   Dataset d;
   for (const Pose2& odometry :
        {Pose2(0, 0, 0), Pose2(0, 0, 0), Pose2(0, 0, 0), Pose2(0.5, 0, 0.3), Pose2(0.6, 0, 0.3),
-        Pose2(0.6, 0, 0.3), Pose2(0.62, 0, 1.0), Pose2(0.62, 0, 1.0)}) {
+        Pose2(0.6, 0, 0.3), Pose2(0.62, 0, 1.0), Pose2(0.62, 0, 1.4), Pose2(0.62, 0, 1.8),
+        Pose2(0.9, 0, 1.8), Pose2(0.9, 0, 1.8)}) {
     d.scans.push_back(
         Scan(10.0 + 0.2 * static_cast<double>(d.scans.size()), 181, kPi / 180, odometry));
   }
   const DatasetSummary s = Summarize(d);
-  // Scans 1 and 2, then 5; the repeat at the end has no step after it.
+  // Scans 1 and 2, then 5. Turning on the spot at scans 7 and 8 repeats no whole reading, and the
+  // repeat at the end has no step after it.
   EXPECT_EQ(s.odometry_repeats, 2u);
   EXPECT_EQ(s.longest_odometry_repeat, 2u);
   EXPECT_NEAR(s.largest_catch_up_m, 0.5, 1e-12);

@@ -13,26 +13,31 @@
 
 namespace evoslam {
 
-// Scans [first, last] of a log repeat the odometry of scan first - 1, and scan last + 1's
+// Scans [first, last] of a log repeat the odometry position of scan first - 1, and scan last + 1's
 // odometry moves on from it by `catch_up` (in the frame of the repeated reading). A raw log
 // repeats a reading when the odometry messages were held up while the laser went on, and the
 // next fresh reading then carries all the motion since: the MIT CSAIL log does so three times
-// while driving, once for four scans ending in a step of 0.47 m and 85 degrees.
+// while driving, once for four scans ending in a step of 0.47 m and 85 degrees. Four more times
+// there only the position is held while the heading reads on, ending in steps of 0.40 to 0.83 m.
 struct OdometryStall {
   std::size_t first = 0;
   std::size_t last = 0;
   Pose2 catch_up;
+  // Whether the heading repeated too; when it did not, the readings' headings are live.
+  bool heading_held = true;
 };
 
-// The stalls of `scans` whose catch-up exceeds `absorbed` (x, y, heading) along any of the three:
-// those a search of a small cube around each odometry step cannot follow. A robot standing still
-// also repeats its reading, and the step that ends that run is one small step.
+// The stalls of `scans` whose catch-up exceeds `absorbed` (x, y, heading) along any of the three,
+// or along x or y where only the position repeated: those a search of a small cube around each
+// odometry step cannot follow. A robot standing still also repeats its reading, and one turning
+// on the spot its position; the step that ends such a run is one small step.
 std::vector<OdometryStall> FindOdometryStalls(std::span<const LaserScan> scans,
                                               const Eigen::Vector3d& absorbed);
 
 // Each stall's odometry spread between the readings either side of it (scans first - 1 and
 // last + 1) in proportion to the scans' timestamps, or to their indices where the timestamps do
-// not increase: the motion the late reading reports, as it happened while the laser scanned.
+// not increase: the motion the late reading reports, as it happened while the laser scanned. Of a
+// stall whose heading read on, only the positions are spread and the headings are kept.
 // `stalls` must come from FindOdometryStalls on these scans.
 void FillOdometryStalls(std::span<LaserScan> scans, std::span<const OdometryStall> stalls);
 

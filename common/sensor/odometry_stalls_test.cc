@@ -27,6 +27,13 @@ void Stall(std::vector<LaserScan>& scans, std::size_t first, std::size_t last) {
   for (std::size_t k = first; k <= last; ++k) scans[k].odometry = scans[first - 1].odometry;
 }
 
+// Scans [first, last] repeat scan first - 1's position while their headings read on.
+void StallThePosition(std::vector<LaserScan>& scans, std::size_t first, std::size_t last) {
+  for (std::size_t k = first; k <= last; ++k) {
+    scans[k].odometry = Pose2(scans[first - 1].odometry.translation(), scans[k].odometry.theta());
+  }
+}
+
 TEST(FindOdometryStallsTest, FindsRepeatsEndedByACatchUpTheCubeCannotAbsorb) {
   std::vector<LaserScan> scans = Drive({0.0, 0.2, 0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6});
   Stall(scans, 3, 6);
@@ -49,6 +56,49 @@ TEST(FindOdometryStallsTest, LeavesAStillRobotAndARunAtTheEndAlone) {
   EXPECT_TRUE(FindOdometryStalls(scans, kCube).empty());
   // The same creep counts once the cube is tighter than it.
   EXPECT_EQ(FindOdometryStalls(scans, Eigen::Vector3d(0.01, 0.01, 0.01)).size(), 1u);
+}
+
+TEST(FindOdometryStallsTest, FindsAPositionHeldWhileTheHeadingReadOn) {
+  std::vector<LaserScan> scans = Drive({0.0, 0.2, 0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6});
+  StallThePosition(scans, 3, 6);
+  const std::vector<OdometryStall> stalls = FindOdometryStalls(scans, kCube);
+  ASSERT_EQ(stalls.size(), 1u);
+  EXPECT_EQ(stalls[0].first, 3u);
+  EXPECT_EQ(stalls[0].last, 6u);
+  EXPECT_FALSE(stalls[0].heading_held);
+  EXPECT_NEAR(stalls[0].catch_up.translation().norm(), 1.25, 1e-12);
+}
+
+TEST(FindOdometryStallsTest, LeavesATurnOnTheSpotAlone) {
+  // Turning 0.3 rad a scan on the spot for scans 1 to 5, then driving off 5 cm a scan.
+  std::vector<LaserScan> scans(9);
+  for (std::size_t i = 1; i < scans.size(); ++i) {
+    scans[i].timestamp = 0.2 * static_cast<double>(i);
+    scans[i].odometry = scans[i - 1].odometry * (i <= 5 ? Pose2(0.0, 0.0, 0.3) : Pose2(0.05, 0, 0));
+  }
+  EXPECT_TRUE(FindOdometryStalls(scans, kCube).empty()) << "1.5 rad turned, but read as it went";
+  // Its position is held all the same, as a cube of nothing shows.
+  const std::vector<OdometryStall> held = FindOdometryStalls(scans, Eigen::Vector3d::Zero());
+  ASSERT_EQ(held.size(), 1u);
+  EXPECT_EQ(held[0].first, 1u);
+  EXPECT_EQ(held[0].last, 5u);
+  EXPECT_FALSE(held[0].heading_held);
+}
+
+TEST(FillOdometryStallsTest, SpreadsThePositionAndKeepsTheHeadingsThatReadOn) {
+  const std::vector<LaserScan> truth = Drive({0.0, 0.21, 0.4, 0.63, 0.8, 1.05, 1.2, 1.41, 1.6});
+  std::vector<LaserScan> scans = truth;
+  StallThePosition(scans, 3, 6);
+  // Headings that a spread between scans 2 and 7 would not give back.
+  for (std::size_t k = 3; k <= 6; ++k) scans[k].odometry = scans[k].odometry * Pose2(0, 0, 0.1);
+  const std::vector<LaserScan> read = scans;
+  FillOdometryStalls(scans, FindOdometryStalls(scans, kCube));
+  for (std::size_t i = 0; i < scans.size(); ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_NEAR(scans[i].odometry.x(), truth[i].odometry.x(), 1e-12);
+    EXPECT_NEAR(scans[i].odometry.y(), truth[i].odometry.y(), 1e-12);
+    EXPECT_EQ(scans[i].odometry.theta(), read[i].odometry.theta());
+  }
 }
 
 TEST(FillOdometryStallsTest, SpreadsTheCatchUpOverTheStallByTime) {
