@@ -67,9 +67,7 @@ DatasetSummary Summarize(const Dataset& dataset) {
     s.odometry_path_length = PathLength(std::span<const LaserScan>(dataset.scans),
                                         [](const LaserScan& scan) { return scan.odometry; });
   }
-  std::vector<OdometryStall> repeats = FindOdometryStalls(dataset.scans, Eigen::Vector3d::Zero());
-  // A robot turning on the spot repeats its position alone, and its reading is not repeated.
-  std::erase_if(repeats, [](const OdometryStall& run) { return !run.heading_held; });
+  const std::vector<OdometryStall> repeats = FindRepeatedReadings(dataset.scans);
   s.odometry_repeats = repeats.size();
   for (const OdometryStall& run : repeats) {
     s.longest_odometry_repeat = std::max(s.longest_odometry_repeat, run.last + 1 - run.first);

@@ -1,6 +1,9 @@
 #include "common/sensor/odometry_stalls.h"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
+#include <iterator>
 #include <string>
 
 #include "common/util/error.h"
@@ -9,35 +12,66 @@ namespace evoslam {
 
 namespace {
 
-bool SamePosition(const Pose2& a, const Pose2& b) { return a.x() == b.x() && a.y() == b.y(); }
-
-}  // namespace
-
-std::vector<OdometryStall> FindOdometryStalls(std::span<const LaserScan> scans,
-                                              const Eigen::Vector3d& absorbed) {
-  std::vector<OdometryStall> stalls;
+// Calls `run(first, end)` for each run of scans [first, end) over which `same(scan k, scan k - 1)`
+// holds: end is the scan that ends it, or the number of scans where it lasts to the end.
+template <typename Same, typename Run>
+void ForEachRun(std::span<const LaserScan> scans, Same same, Run run) {
   std::size_t i = 1;
   while (i < scans.size()) {
-    if (!SamePosition(scans[i].odometry, scans[i - 1].odometry)) {
+    if (!same(scans[i].odometry, scans[i - 1].odometry)) {
       ++i;
       continue;
     }
-    std::size_t end = i;  // the first scan past the run of repeats
-    bool heading_held = true;
-    while (end < scans.size() && SamePosition(scans[end].odometry, scans[end - 1].odometry)) {
-      heading_held = heading_held && scans[end].odometry.theta() == scans[end - 1].odometry.theta();
-      ++end;
-    }
-    if (end < scans.size()) {
-      const Pose2 catch_up = scans[i - 1].odometry.inverse() * scans[end].odometry;
-      // Where the heading read on, its change over the run is the robot's own turn, no catch-up.
-      if (std::abs(catch_up.x()) > absorbed.x() || std::abs(catch_up.y()) > absorbed.y() ||
-          (heading_held && std::abs(catch_up.theta()) > absorbed.z())) {
-        stalls.push_back({i, end - 1, catch_up, heading_held});
-      }
-    }
+    std::size_t end = i;
+    while (end < scans.size() && same(scans[end].odometry, scans[end - 1].odometry)) ++end;
+    run(i, end);
     i = end;
   }
+}
+
+Pose2 CatchUp(std::span<const LaserScan> scans, std::size_t first, std::size_t end) {
+  return scans[first - 1].odometry.inverse() * scans[end].odometry;
+}
+
+bool SamePosition(const Pose2& a, const Pose2& b) { return a.x() == b.x() && a.y() == b.y(); }
+
+bool MovesBeyond(const Pose2& catch_up, const Eigen::Vector3d& absorbed) {
+  return std::abs(catch_up.x()) > absorbed.x() || std::abs(catch_up.y()) > absorbed.y();
+}
+
+}  // namespace
+
+std::vector<OdometryStall> FindRepeatedReadings(std::span<const LaserScan> scans) {
+  std::vector<OdometryStall> runs;
+  ForEachRun(scans, std::equal_to<Pose2>(), [&](std::size_t first, std::size_t end) {
+    if (end < scans.size()) runs.push_back({first, end - 1, CatchUp(scans, first, end)});
+  });
+  return runs;
+}
+
+std::vector<OdometryStall> FindOdometryStalls(std::span<const LaserScan> scans,
+                                              const Eigen::Vector3d& absorbed) {
+  const std::vector<OdometryStall> repeats = FindRepeatedReadings(scans);
+  auto repeat = repeats.begin();
+  std::vector<OdometryStall> stalls;
+  ForEachRun(scans, SamePosition, [&](std::size_t first, std::size_t end) {
+    // The repeated readings within this run of repeated positions.
+    const auto within_end = std::find_if(repeat, repeats.end(),
+                                         [end](const OdometryStall& r) { return r.first >= end; });
+    if (end < scans.size() && MovesBeyond(CatchUp(scans, first, end), absorbed)) {
+      bool heading_held = true;
+      for (std::size_t k = first; k < end; ++k) {
+        heading_held = heading_held && scans[k].odometry.theta() == scans[k - 1].odometry.theta();
+      }
+      stalls.push_back({first, end - 1, CatchUp(scans, first, end), heading_held});
+    } else {
+      // A robot turning on the spot whose readings were also held up for a while.
+      std::copy_if(repeat, within_end, std::back_inserter(stalls), [&](const OdometryStall& r) {
+        return MovesBeyond(r.catch_up, absorbed) || std::abs(r.catch_up.theta()) > absorbed.z();
+      });
+    }
+    repeat = within_end;
+  });
   return stalls;
 }
 

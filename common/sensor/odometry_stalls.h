@@ -27,10 +27,15 @@ struct OdometryStall {
   bool heading_held = true;
 };
 
-// The stalls of `scans` whose catch-up exceeds `absorbed` (x, y, heading) along any of the three,
-// or along x or y where only the position repeated: those a search of a small cube around each
-// odometry step cannot follow. A robot standing still also repeats its reading, and one turning
-// on the spot its position; the step that ends such a run is one small step.
+// Every run of scans that repeat the whole odometry reading before them and is ended by a scan
+// whose reading moves on, with that scan's catch-up: a robot standing still, or a stall.
+std::vector<OdometryStall> FindRepeatedReadings(std::span<const LaserScan> scans);
+
+// The stalls of `scans` that a search of a small cube, `absorbed` (x, y, heading), around each
+// odometry step cannot follow: a run of repeated positions whose catch-up exceeds the cube along
+// x or y, or else a run of repeated readings within it whose catch-up exceeds it along any of the
+// three. A robot standing still repeats its reading, and one turning on the spot its position, but
+// the step that ends such a run is small.
 std::vector<OdometryStall> FindOdometryStalls(std::span<const LaserScan> scans,
                                               const Eigen::Vector3d& absorbed);
 

@@ -85,6 +85,39 @@ TEST(FindOdometryStallsTest, LeavesATurnOnTheSpotAlone) {
   EXPECT_FALSE(held[0].heading_held);
 }
 
+TEST(FindOdometryStallsTest, FindsReadingsHeldUpWhileTurningOnTheSpot) {
+  // Turning 0.02 rad a scan on the spot; the readings of scans 4 to 6 repeat scan 3's, and scan 7
+  // catches up 0.08 rad.
+  std::vector<LaserScan> scans(10);
+  for (std::size_t i = 1; i < scans.size(); ++i) {
+    scans[i].timestamp = 0.2 * static_cast<double>(i);
+    scans[i].odometry = scans[i - 1].odometry * (i < 8 ? Pose2(0.0, 0.0, 0.02) : Pose2(0.05, 0, 0));
+  }
+  Stall(scans, 4, 6);
+  const std::vector<OdometryStall> stalls = FindOdometryStalls(scans, kCube);
+  ASSERT_EQ(stalls.size(), 1u);
+  EXPECT_EQ(stalls[0].first, 4u);
+  EXPECT_EQ(stalls[0].last, 6u);
+  EXPECT_TRUE(stalls[0].heading_held);
+  EXPECT_NEAR(stalls[0].catch_up.theta(), 0.08, 1e-12);
+}
+
+TEST(FindOdometryStallsTest, AHeldPositionIsOneStallThoughItsHeadingRepeatsOnce) {
+  std::vector<LaserScan> scans = Drive({0.0, 0.2, 0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6});
+  StallThePosition(scans, 3, 6);
+  scans[5].odometry = scans[4].odometry;
+  const std::vector<OdometryStall> stalls = FindOdometryStalls(scans, kCube);
+  ASSERT_EQ(stalls.size(), 1u);
+  EXPECT_EQ(stalls[0].first, 3u);
+  EXPECT_EQ(stalls[0].last, 6u);
+  EXPECT_FALSE(stalls[0].heading_held);
+  // The repeated reading is there all the same, as what `evoslam info` counts.
+  const std::vector<OdometryStall> repeats = FindRepeatedReadings(scans);
+  ASSERT_EQ(repeats.size(), 1u);
+  EXPECT_EQ(repeats[0].first, 5u);
+  EXPECT_EQ(repeats[0].last, 5u);
+}
+
 TEST(FillOdometryStallsTest, SpreadsThePositionAndKeepsTheHeadingsThatReadOn) {
   const std::vector<LaserScan> truth = Drive({0.0, 0.21, 0.4, 0.63, 0.8, 1.05, 1.2, 1.41, 1.6});
   std::vector<LaserScan> scans = truth;
