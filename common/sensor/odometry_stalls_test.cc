@@ -34,13 +34,23 @@ void StallThePosition(std::vector<LaserScan>& scans, std::size_t first, std::siz
   }
 }
 
+// Whether `stalls` is a single stall over scans [first, last], its heading held or read on.
+testing::AssertionResult OneStall(const std::vector<OdometryStall>& stalls, std::size_t first,
+                                  std::size_t last, bool heading_held) {
+  if (stalls.size() != 1) return testing::AssertionFailure() << stalls.size() << " stalls";
+  const OdometryStall& s = stalls[0];
+  if (s.first != first || s.last != last || s.heading_held != heading_held) {
+    return testing::AssertionFailure() << "scans " << s.first << " to " << s.last
+                                       << (s.heading_held ? ", heading held" : ", heading read on");
+  }
+  return testing::AssertionSuccess();
+}
+
 TEST(FindOdometryStallsTest, FindsRepeatsEndedByACatchUpTheCubeCannotAbsorb) {
   std::vector<LaserScan> scans = Drive({0.0, 0.2, 0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6});
   Stall(scans, 3, 6);
   const std::vector<OdometryStall> stalls = FindOdometryStalls(scans, kCube);
-  ASSERT_EQ(stalls.size(), 1u);
-  EXPECT_EQ(stalls[0].first, 3u);
-  EXPECT_EQ(stalls[0].last, 6u);
+  ASSERT_TRUE(OneStall(stalls, 3, 6, true));
   EXPECT_NEAR(stalls[0].catch_up.theta(), 0.5, 1e-12);  // 1 s of turning at 0.5 rad/s
   EXPECT_NEAR(stalls[0].catch_up.translation().norm(), 1.25, 1e-12);
 }
@@ -62,10 +72,7 @@ TEST(FindOdometryStallsTest, FindsAPositionHeldWhileTheHeadingReadOn) {
   std::vector<LaserScan> scans = Drive({0.0, 0.2, 0.4, 0.6, 0.8, 1.0, 1.2, 1.4, 1.6});
   StallThePosition(scans, 3, 6);
   const std::vector<OdometryStall> stalls = FindOdometryStalls(scans, kCube);
-  ASSERT_EQ(stalls.size(), 1u);
-  EXPECT_EQ(stalls[0].first, 3u);
-  EXPECT_EQ(stalls[0].last, 6u);
-  EXPECT_FALSE(stalls[0].heading_held);
+  ASSERT_TRUE(OneStall(stalls, 3, 6, false));
   EXPECT_NEAR(stalls[0].catch_up.translation().norm(), 1.25, 1e-12);
 }
 
@@ -79,10 +86,7 @@ TEST(FindOdometryStallsTest, LeavesATurnOnTheSpotAlone) {
   EXPECT_TRUE(FindOdometryStalls(scans, kCube).empty()) << "1.5 rad turned, but read as it went";
   // Its position is held all the same, as a cube of nothing shows.
   const std::vector<OdometryStall> held = FindOdometryStalls(scans, Eigen::Vector3d::Zero());
-  ASSERT_EQ(held.size(), 1u);
-  EXPECT_EQ(held[0].first, 1u);
-  EXPECT_EQ(held[0].last, 5u);
-  EXPECT_FALSE(held[0].heading_held);
+  ASSERT_TRUE(OneStall(held, 1, 5, false));
 }
 
 TEST(FindOdometryStallsTest, FindsReadingsHeldUpWhileTurningOnTheSpot) {
@@ -95,10 +99,7 @@ TEST(FindOdometryStallsTest, FindsReadingsHeldUpWhileTurningOnTheSpot) {
   }
   Stall(scans, 4, 6);
   const std::vector<OdometryStall> stalls = FindOdometryStalls(scans, kCube);
-  ASSERT_EQ(stalls.size(), 1u);
-  EXPECT_EQ(stalls[0].first, 4u);
-  EXPECT_EQ(stalls[0].last, 6u);
-  EXPECT_TRUE(stalls[0].heading_held);
+  ASSERT_TRUE(OneStall(stalls, 4, 6, true));
   EXPECT_NEAR(stalls[0].catch_up.theta(), 0.08, 1e-12);
 }
 
@@ -107,15 +108,10 @@ TEST(FindOdometryStallsTest, AHeldPositionIsOneStallThoughItsHeadingRepeatsOnce)
   StallThePosition(scans, 3, 6);
   scans[5].odometry = scans[4].odometry;
   const std::vector<OdometryStall> stalls = FindOdometryStalls(scans, kCube);
-  ASSERT_EQ(stalls.size(), 1u);
-  EXPECT_EQ(stalls[0].first, 3u);
-  EXPECT_EQ(stalls[0].last, 6u);
-  EXPECT_FALSE(stalls[0].heading_held);
+  ASSERT_TRUE(OneStall(stalls, 3, 6, false));
   // The repeated reading is there all the same, as what `evoslam info` counts.
   const std::vector<OdometryStall> repeats = FindRepeatedReadings(scans);
-  ASSERT_EQ(repeats.size(), 1u);
-  EXPECT_EQ(repeats[0].first, 5u);
-  EXPECT_EQ(repeats[0].last, 5u);
+  ASSERT_TRUE(OneStall(repeats, 5, 5, true));
 }
 
 TEST(FillOdometryStallsTest, SpreadsThePositionAndKeepsTheHeadingsThatReadOn) {
