@@ -65,7 +65,8 @@ std::vector<OdometryStall> FindOdometryStalls(std::span<const LaserScan> scans,
       }
       stalls.push_back({first, end - 1, CatchUp(scans, first, end), heading_held});
     } else {
-      // A robot turning on the spot whose readings were also held up for a while.
+      // The position moved on by little (standing, or turning on the spot): a stall is a run of
+      // whole readings held up within it, a turn most likely, that the cube cannot follow.
       std::copy_if(repeat, within_end, std::back_inserter(stalls), [&](const OdometryStall& r) {
         return MovesBeyond(r.catch_up, absorbed) || std::abs(r.catch_up.theta()) > absorbed.z();
       });
