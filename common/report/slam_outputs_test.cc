@@ -300,7 +300,8 @@ TEST_F(SlamOutputsTest, SummarySaysWhatRanWhatItFoundAndHowWell) {
   for (const char* line : {
            "SLAM (rss) over 30 scans of office-boxes.clf, 5.80 s of log",
            "local search: PSO of 10 particles x 30 iterations on eval1, map cells 0.05 m, ties to "
-           "odometry, odometry where the scan fixes nothing, refined below a cell",
+           "odometry, a second swarm at odometry's heading, odometry where the scan fixes nothing, "
+           "refined below a cell",
            "global search: on a loop or every 300 steps, 8 partitions, 1 return in 2 scored, 2 "
            "islands of mu+lambda-002 x 100 generations",
            "time 1.88 s: local search 1.00 s, loop detection 0.25 s, global search 0.50 s "

@@ -93,6 +93,7 @@ void PrintSearches(std::ostream& s, const proto::SlamParams& p) {
   s << "  local search: PSO of " << p.local_particles() << " particles x " << p.local_iterations()
     << " iterations on " << p.local_fitness() << ", map cells " << p.resolution_m() << " m, "
     << (p.local_odometry_pull() > 0 ? "ties to odometry, " : "")
+    << (p.local_hedged_shift_rad() > 0 ? "a second swarm at odometry's heading, " : "")
     << (p.local_min_constraint_ratio() > 0 ? "odometry where the scan fixes nothing, " : "")
     << (p.local_odometry_weight() > 0
             ? "odometry weighted " + FormatShortest(p.local_odometry_weight()) + ", "

@@ -114,32 +114,44 @@ TEST(CorrectLogStepTest, AFastTurnsHeadingErrorIsFoundWhenTheCubeGrowsWithTheTur
   EXPECT_LT(heading_error(0.6), 0.01);
 }
 
+// Two steps of 0.3 rad through the box room. Odometry put 0.2 rad more into the first, and the
+// local search took it back; the second step's odometry is the test's.
+struct TurnAfterACorrection {
+  HitCountGrid map;
+  Dataset drive;
+  std::vector<Pose2> poses;  // the first two scans', the second corrected by -0.2 rad
+  Pose2 second;              // the third scan's true pose
+};
+
+TurnAfterACorrection MakeTurnAfterACorrection() {
+  const LineMap room = testing::BoxRoom();
+  const Pose2 start(2.8, 2.2, 0.3);
+  const Pose2 first = start * Pose2(0.05, 0.0, 0.3);
+  TurnAfterACorrection t{
+      MapDrivenUpTo(room, start), {}, {start, first}, first * Pose2(0.05, 0.0, 0.3)};
+  t.map.AddScan(testing::ScanFrom(room, first), first);
+  t.drive.scans = {testing::ScanFrom(room, start), testing::ScanFrom(room, first),
+                   testing::ScanFrom(room, t.second)};
+  t.drive.scans[0].odometry = start;
+  t.drive.scans[1].odometry = start * Pose2(0.05, 0.0, 0.3 + 0.2);
+  return t;
+}
+
 // Odometry read a little after the laser during a turn: it puts 0.2 rad of the second step's
 // turn into the first. The first step's correction took that back; the second step's error, the
 // opposite, lies beyond a cube sized by the little turn odometry reports for it, but within one
 // that also allows for the correction before.
 TEST(CorrectLogStepTest, AHeadingCorrectionTakenOneStepIsAllowedForInTheNext) {
-  const LineMap room = testing::BoxRoom();
-  const Pose2 start(2.8, 2.2, 0.3);
-  HitCountGrid map = MapDrivenUpTo(room, start);
-  const Pose2 first = start * Pose2(0.05, 0.0, 0.3);
-  const Pose2 second = first * Pose2(0.05, 0.0, 0.3);
-  map.AddScan(testing::ScanFrom(room, first), first);
-  Dataset drive;
-  drive.scans = {testing::ScanFrom(room, start), testing::ScanFrom(room, first),
-                 testing::ScanFrom(room, second)};
-  drive.scans[0].odometry = start;
-  drive.scans[1].odometry = start * Pose2(0.05, 0.0, 0.3 + 0.2);
-  drive.scans[2].odometry = drive.scans[1].odometry * Pose2(0.05, 0.0, 0.3 - 0.2);
-  const std::vector<Pose2> poses{start, first};  // the first step corrected by -0.2 rad
+  TurnAfterACorrection t = MakeTurnAfterACorrection();
+  t.drive.scans[2].odometry = t.drive.scans[1].odometry * Pose2(0.05, 0.0, 0.3 - 0.2);
   const auto heading_error = [&](double carried, double shift) {
     LocalSearchParams params;  // the cube alone: 0.05 + 0.6 * 0.1 rad without the carry
     params.recentres = 0;
     params.refine.iterations = 0;
     params.carried_turn_error = carried;
     params.carried_turn_shift = shift;
-    const StepCorrection c = CorrectLogStep(map, drive, poses, params, Rng(4));
-    return std::abs((second.inverse() * c.pose).theta());
+    const StepCorrection c = CorrectLogStep(t.map, t.drive, t.poses, params, Rng(4));
+    return std::abs((t.second.inverse() * c.pose).theta());
   };
   EXPECT_GT(heading_error(0.0, 0.0), 0.05);
   EXPECT_LT(heading_error(0.5, 0.0), 0.01);
@@ -147,6 +159,31 @@ TEST(CorrectLogStepTest, AHeadingCorrectionTakenOneStepIsAllowedForInTheNext) {
   // moved the other way, it cannot.
   EXPECT_LT(heading_error(0.0, 1.0), 0.01);
   EXPECT_GT(heading_error(0.0, -1.0), 0.05);
+}
+
+// The same turn with the whole correction carried over as a shift. Where odometry gives the
+// 0.2 rad back, the shift centres the heading range on the step's heading. Where odometry is
+// right, it moves the range 0.2 rad away, out of a cube of +-0.05 rad, and a second swarm centred
+// on odometry's heading finds the step; where the shift guessed right, its swarm's fit is kept.
+TEST(CorrectLogStepTest, ASecondSwarmAtOdometrysHeadingHedgesAShiftThatGuessesWrong) {
+  TurnAfterACorrection t = MakeTurnAfterACorrection();
+  const auto heading_error = [&](double given_back, double hedged_shift) {
+    t.drive.scans[2].odometry = t.drive.scans[1].odometry * Pose2(0.05, 0.0, 0.3 - given_back);
+    LocalSearchParams params;
+    params.recentres = 0;
+    params.refine.iterations = 0;
+    params.turn_error_per_rad = 0.0;
+    params.carried_turn_error = 0.0;
+    params.carried_turn_shift = 1.0;
+    params.hedged_shift = hedged_shift;
+    const StepCorrection c = CorrectLogStep(t.map, t.drive, t.poses, params, Rng(4));
+    return std::abs((t.second.inverse() * c.pose).theta());
+  };
+  EXPECT_GT(heading_error(0.0, 0.0), 0.04);
+  EXPECT_LT(heading_error(0.0, 0.05), 0.01);
+  EXPECT_GT(heading_error(0.0, 0.25), 0.04);  // a shift of 0.2 rad is not hedged from 0.25
+  EXPECT_LT(heading_error(0.2, 0.0), 0.01);
+  EXPECT_LT(heading_error(0.2, 0.05), 0.01);
 }
 
 TEST(CorrectLogStepTest, RefusesAStepWithoutAPoseBeforeIt) {

@@ -50,6 +50,7 @@ RssSlamParams RssSlamParamsFromProto(const proto::SlamParams& p) {
   if (p.has_local_turn_error_per_rad()) l.turn_error_per_rad = p.local_turn_error_per_rad();
   if (p.has_local_carried_turn_error()) l.carried_turn_error = p.local_carried_turn_error();
   if (p.has_local_carried_turn_shift()) l.carried_turn_shift = p.local_carried_turn_shift();
+  if (p.has_local_hedged_shift_rad()) l.hedged_shift = p.local_hedged_shift_rad();
   if (p.has_local_refine_iterations()) l.refine.iterations = p.local_refine_iterations();
   if (p.has_local_refine_max_shift_cells())
     l.refine.max_shift_cells = p.local_refine_max_shift_cells();
@@ -125,6 +126,7 @@ proto::SlamParams CompleteSlamParams(const proto::SlamParams& given) {
   p.set_local_turn_error_per_rad(l.turn_error_per_rad);
   p.set_local_carried_turn_error(l.carried_turn_error);
   p.set_local_carried_turn_shift(l.carried_turn_shift);
+  p.set_local_hedged_shift_rad(l.hedged_shift);
   p.set_local_refine_iterations(static_cast<std::uint32_t>(l.refine.iterations));
   p.set_local_refine_max_shift_cells(l.refine.max_shift_cells);
   p.set_local_refine_max_turn_rad(l.refine.max_turn);

@@ -50,6 +50,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   p.set_local_turn_error_per_rad(0.0);
   p.set_local_carried_turn_error(0.0);
   p.set_local_carried_turn_shift(0.0);
+  p.set_local_hedged_shift_rad(0.0);
   p.set_local_refine_iterations(0);
   p.set_local_refine_max_shift_cells(1.5);
   p.set_local_refine_max_turn_rad(0.03);
@@ -77,6 +78,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   EXPECT_EQ(r.local.turn_error_per_rad, 0.0);
   EXPECT_EQ(r.local.carried_turn_error, 0.0);
   EXPECT_EQ(r.local.carried_turn_shift, 0.0);
+  EXPECT_EQ(r.local.hedged_shift, 0.0);
   EXPECT_EQ(r.local.refine.iterations, 0u);
   EXPECT_EQ(r.local.refine.max_shift_cells, 1.5);
   EXPECT_EQ(r.local.refine.wall_share, 0.0);
@@ -143,6 +145,11 @@ TEST(SlamParamsTest, BadFieldsAreNamed) {
   p = {};
   p.set_local_carried_turn_shift(std::numeric_limits<double>::quiet_NaN());
   EXPECT_NE(ErrorOf(p).find("shift by the previous step's heading correction"), std::string::npos);
+  for (double hedged : {-0.01, std::numeric_limits<double>::infinity()}) {
+    p = {};
+    p.set_local_hedged_shift_rad(hedged);
+    EXPECT_NE(ErrorOf(p).find("hedged by a second swarm"), std::string::npos) << hedged;
+  }
   p = {};
   p.set_local_refine_max_shift_cells(-0.5);
   EXPECT_NE(ErrorOf(p).find("largest shift"), std::string::npos);
