@@ -218,12 +218,11 @@ StepCorrection CorrectLogStep(const HitCountGrid& map, const Dataset& dataset,
   const Pose2 unshifted = previous_pose * step;
   const StepCorrection hedge =
       CorrectStep(map, scored, unshifted, for_step, rng.Stream(kHedgeStream));
-  // Both are counted on one window, which holds every pose either range reaches; by eq. 1 whatever
-  // the search's fitness, since eq. 2 ranks alike and eq. 1's counts give the margin a unit.
-  Eigen::Vector3d both = for_step.max_error;
-  both.z() += std::abs(shift);
-  const StepCorrectionProblem judge(map, scored, predicted, both, LocalFitness::kEval1, 0.0,
-                                    params.free_frontier);
+  // By eq. 1 whatever the search's fitness, since eq. 2 ranks alike and eq. 1's counts give the
+  // margin a unit. The two counts differ only by the cells each pose's returns add, wherever they
+  // land, so the judge's own window and cube do not matter.
+  const StepCorrectionProblem judge(map, scored, predicted, for_step.max_error,
+                                    LocalFitness::kEval1, 0.0, params.free_frontier);
   const auto cells = [&](const Pose2& pose) {
     const Pose2 error = predicted.inverse() * pose;
     return judge.Score(Eigen::Vector3d(error.x(), error.y(), error.theta()));
