@@ -66,9 +66,9 @@ void AddEvalCommand(CLI::App& app) {
       std::printf(
           "absolute: %zu poses, RMS x %.4f m, y %.4f m, heading %.3f deg, "
           "translation %.4f m (max %.4f m); aligned to the truth by a rigid motion, "
-          "translation %.4f m\n",
+          "translation %.4f m; by a rigid motion and a scale of %.4f, %.4f m\n",
           a.poses, a.rms_x, a.rms_y, Degrees(a.rms_theta), a.rms_translation, a.max_translation,
-          a.aligned_rms_translation);
+          a.aligned_rms_translation, a.alignment_scale, a.scale_aligned_rms_translation);
       relations = RelationsFromTruth(truth_poses);
     }
     const RelationErrors e = ComputeRelationErrors(trajectory, relations);

@@ -88,6 +88,8 @@ TEST_F(CliTest, SimulateThenLocalizeWritesEveryOutput) {
       RunCli("eval " + Path("run/trajectory.txt") + " --truth " + Path("sim/log.clf"));
   ASSERT_EQ(eval.status, 0) << eval.output;
   EXPECT_NE(eval.output.find("absolute: 40 poses"), std::string::npos) << eval.output;
+  EXPECT_NE(eval.output.find("by a rigid motion and a scale of "), std::string::npos)
+      << eval.output;
 
   // Same seed, same trajectory, byte for byte.
   ASSERT_EQ(RunCli("localize --map " + Path("sim/world.lines") + " --log " + Path("sim/log.clf") +

@@ -45,11 +45,19 @@ MeanStd Moments(const std::vector<double>& v) {
   return m;
 }
 
+struct Alignments {
+  double rigid_rms = 0.0;
+  double scaled_rms = 0.0;
+  double scale = 1.0;
+};
+
 // The RMS distance between `estimated` and `truth`, paired by index, after the rigid motion of
-// `estimated` that minimises it. In 2D the rotation has a closed form: the angle of the summed
-// cross and dot products of the centred pairs.
-double AlignedRms(std::span<const Eigen::Vector2d> estimated,
-                  std::span<const Eigen::Vector2d> truth) {
+// `estimated` that minimises it, and after the similarity (a rigid motion and a uniform scale)
+// that does (Umeyama 1991). In 2D both have a closed form: the rotation is the angle of the
+// summed cross and dot products of the centred pairs, the scale their length over the estimate's
+// spread.
+Alignments Align(std::span<const Eigen::Vector2d> estimated,
+                 std::span<const Eigen::Vector2d> truth) {
   const auto n = static_cast<double>(estimated.size());
   Eigen::Vector2d mean_e = Eigen::Vector2d::Zero(), mean_t = Eigen::Vector2d::Zero();
   for (std::size_t i = 0; i < estimated.size(); ++i) {
@@ -58,18 +66,26 @@ double AlignedRms(std::span<const Eigen::Vector2d> estimated,
   }
   mean_e /= n;
   mean_t /= n;
-  double dot = 0.0, cross = 0.0;
+  double dot = 0.0, cross = 0.0, spread = 0.0;
   for (std::size_t i = 0; i < estimated.size(); ++i) {
     const Eigen::Vector2d a = estimated[i] - mean_e, b = truth[i] - mean_t;
     dot += a.dot(b);
     cross += a.x() * b.y() - a.y() * b.x();
+    spread += a.squaredNorm();
   }
+  Alignments result;
+  // An estimate with no spread has no scale to find; the rigid figures stand for both.
+  if (spread > 0.0) result.scale = std::hypot(dot, cross) / spread;
   const Eigen::Rotation2Dd rotation(std::atan2(cross, dot));
-  double sum = 0.0;
+  double rigid = 0.0, scaled = 0.0;
   for (std::size_t i = 0; i < estimated.size(); ++i) {
-    sum += (rotation * (estimated[i] - mean_e) - (truth[i] - mean_t)).squaredNorm();
+    const Eigen::Vector2d turned = rotation * (estimated[i] - mean_e), target = truth[i] - mean_t;
+    rigid += (turned - target).squaredNorm();
+    scaled += (result.scale * turned - target).squaredNorm();
   }
-  return std::sqrt(sum / n);
+  result.rigid_rms = std::sqrt(rigid / n);
+  result.scaled_rms = std::sqrt(scaled / n);
+  return result;
 }
 
 }  // namespace
@@ -103,7 +119,10 @@ AbsoluteErrors ComputeAbsoluteErrors(std::span<const StampedPose> estimate,
     e.rms_y = std::sqrt(sy / n);
     e.rms_theta = std::sqrt(st / n);
     e.rms_translation = std::sqrt((sx + sy) / n);
-    e.aligned_rms_translation = AlignedRms(estimated, true_positions);
+    const Alignments a = Align(estimated, true_positions);
+    e.aligned_rms_translation = a.rigid_rms;
+    e.scale_aligned_rms_translation = a.scaled_rms;
+    e.alignment_scale = a.scale;
   }
   return e;
 }

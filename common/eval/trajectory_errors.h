@@ -39,6 +39,12 @@ struct AbsoluteErrors {
   // error once the estimate's positions are moved by the rotation and translation that bring
   // them closest to the truth's in the least-squares sense (Horn 1987), m.
   double aligned_rms_translation = 0.0;
+  // The same once a uniform scale is also allowed (Umeyama 1991), and that scale: the factor the
+  // estimate's positions are multiplied by to fit the truth's. A map drawn uniformly too long,
+  // as where odometry over-reads down a corridor the scans do not measure, is wrong by a scale
+  // that no loop reveals; this error is what is left besides it.
+  double scale_aligned_rms_translation = 0.0;
+  double alignment_scale = 1.0;
 };
 AbsoluteErrors ComputeAbsoluteErrors(std::span<const StampedPose> estimate,
                                      std::span<const StampedPose> truth);

@@ -18,6 +18,12 @@ std::vector<StampedPose> Square() {
   return t;
 }
 
+Eigen::Vector2d Centroid(const std::vector<StampedPose>& trajectory) {
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  for (const StampedPose& p : trajectory) sum += p.pose.translation();
+  return sum / static_cast<double>(trajectory.size());
+}
+
 TEST(AbsoluteErrorsTest, ZeroForIdenticalTrajectories) {
   const auto t = Square();
   const AbsoluteErrors e = ComputeAbsoluteErrors(t, t);
@@ -69,9 +75,7 @@ TEST(AbsoluteErrorsTest, AlignedErrorOfATrajectoryDrawnTooLarge) {
   // Drawn 10 % too large about its centroid, then moved: no rigid motion undoes the scale, and the
   // best one undoes the move, which leaves a tenth of each position's distance from the centroid.
   const auto truth = Square();
-  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
-  for (const StampedPose& p : truth) centroid += p.pose.translation();
-  centroid /= static_cast<double>(truth.size());
+  const Eigen::Vector2d centroid = Centroid(truth);
   std::vector<StampedPose> estimate = truth;
   double expected = 0.0;
   const Pose2 offset(-1.0, 4.0, -2.1);
@@ -86,6 +90,41 @@ TEST(AbsoluteErrorsTest, AlignedErrorOfATrajectoryDrawnTooLarge) {
   EXPECT_NEAR(e.aligned_rms_translation, expected, 1e-9);
   EXPECT_GT(expected, 0.1);
   EXPECT_GT(e.rms_translation, 3.0);
+  // A similarity undoes the scale too, and says by how much it shrank the estimate.
+  EXPECT_NEAR(e.scale_aligned_rms_translation, 0.0, 1e-9);
+  EXPECT_NEAR(e.alignment_scale, 1 / 1.1, 1e-12);
+}
+
+TEST(AbsoluteErrorsTest, ScaleAlignedErrorKeepsWhatNoScaleExplains) {
+  // Alternating +-3 cm across a circle's radius: shrinking or growing the estimate would bring
+  // half its poses closer and the other half farther, so the best scale is 1 and the error stays.
+  const auto truth = Square();
+  auto estimate = truth;
+  for (std::size_t i = 0; i < estimate.size(); ++i) {
+    const Pose2& p = estimate[i].pose;
+    const Eigen::Vector2d outward = p.translation().normalized();
+    const Eigen::Vector2d moved = p.translation() + (i % 2 ? 0.03 : -0.03) * outward;
+    estimate[i].pose = Pose2(moved.x(), moved.y(), p.theta());
+  }
+  const AbsoluteErrors e = ComputeAbsoluteErrors(estimate, truth);
+  EXPECT_NEAR(e.alignment_scale, 1.0, 1e-3);
+  EXPECT_NEAR(e.scale_aligned_rms_translation, e.aligned_rms_translation, 1e-4);
+  EXPECT_NEAR(e.scale_aligned_rms_translation, 0.03, 2e-3);
+}
+
+TEST(AbsoluteErrorsTest, AnEstimateStandingStillHasNoScaleToFind) {
+  const auto truth = Square();
+  auto estimate = truth;
+  for (StampedPose& p : estimate) p.pose = Pose2(1.0, 2.0, 0.0);
+  const AbsoluteErrors e = ComputeAbsoluteErrors(estimate, truth);
+  EXPECT_EQ(e.alignment_scale, 1.0);
+  EXPECT_NEAR(e.scale_aligned_rms_translation, e.aligned_rms_translation, 1e-12);
+  // Every position aligned to one point: the error is the truth's spread about its centroid.
+  const Eigen::Vector2d centroid = Centroid(truth);
+  double spread = 0.0;
+  for (const StampedPose& p : truth) spread += (p.pose.translation() - centroid).squaredNorm();
+  EXPECT_NEAR(e.aligned_rms_translation, std::sqrt(spread / static_cast<double>(truth.size())),
+              1e-9);
 }
 
 TEST(RelationErrorsTest, MeasuresRelativeNotAbsoluteError) {

@@ -22,6 +22,8 @@ proto::AbsoluteErrors ToProto(const AbsoluteErrors& e) {
   p.set_rms_translation_m(e.rms_translation);
   p.set_max_translation_m(e.max_translation);
   p.set_aligned_rms_translation_m(e.aligned_rms_translation);
+  p.set_scale_aligned_rms_translation_m(e.scale_aligned_rms_translation);
+  p.set_alignment_scale(e.alignment_scale);
   return p;
 }
 
@@ -78,6 +80,12 @@ std::string FormatAbsoluteErrors(const proto::AbsoluteErrors& a) {
   s << "x " << 100 * a.rms_x_m() << " cm, y " << 100 * a.rms_y_m() << " cm, heading "
     << a.rms_theta_deg() << " deg (max " << 100 * a.max_translation_m()
     << " cm); aligned: " << 100 * a.aligned_rms_translation_m() << " cm";
+  if (a.alignment_scale() > 0.0) {
+    s.precision(4);
+    s << "; aligned and scaled (x" << a.alignment_scale() << "): ";
+    s.precision(2);
+    s << 100 * a.scale_aligned_rms_translation_m() << " cm";
+  }
   return s.str();
 }
 

@@ -53,6 +53,8 @@ TEST(LocalizeReportTest, SummaryShowsErrorsInCentimetresAndDegrees) {
   a.rms_theta = 0.2 * std::numbers::pi / 180;
   a.max_translation = 0.0245;
   a.aligned_rms_translation = 0.0052;
+  a.scale_aligned_rms_translation = 0.0031;
+  a.alignment_scale = 0.99214;
   *r.mutable_absolute_errors() = ToProto(a);
   EXPECT_NEAR(r.absolute_errors().rms_theta_deg(), 0.2, 1e-12);
   RelationErrors e;
@@ -64,7 +66,8 @@ TEST(LocalizeReportTest, SummaryShowsErrorsInCentimetresAndDegrees) {
   *r.mutable_relation_errors() = ToProto(e, "truth");
   EXPECT_NEAR(r.relation_errors().rotation_sq_mean_deg2(), 0.25, 1e-12);
   const std::string s = FormatSummary(r);
-  EXPECT_NE(s.find("x 0.71 cm, y 0.66 cm, heading 0.20 deg (max 2.45 cm); aligned: 0.52 cm"),
+  EXPECT_NE(s.find("x 0.71 cm, y 0.66 cm, heading 0.20 deg (max 2.45 cm); aligned: 0.52 cm; "
+                   "aligned and scaled (x0.9921): 0.31 cm"),
             std::string::npos)
       << s;
   EXPECT_NE(s.find("relative error (truth, 219 relations): 0.0114 +- 0.0073 m, 0.500"),

@@ -310,7 +310,7 @@ TEST_F(SlamOutputsTest, SummarySaysWhatRanWhatItFoundAndHowWell) {
            "loops found: 1 (scan 25 back to 2, score 0.80, distinctness 0.15)",
            "global searches: 1, 1 applied",
            "RMS error vs ground truth: x 0.00 cm, y 0.00 cm, heading 0.00 deg (max 0.00 cm); "
-           "aligned: 0.00 cm",
+           "aligned: 0.00 cm; aligned and scaled (x1.0000): 0.00 cm",
            "relative error (ground truth, consecutive scans, 29 relations): 0.0000 +- 0.0000 m",
        }) {
     EXPECT_NE(s.find(line), std::string::npos) << line << "\n" << s;
