@@ -42,6 +42,9 @@ void ValidateLoopDetectionParams(const LoopDetectionParams& p) {
     throw Error("loop detection: the fit tolerances must not be negative");
   if (!(p.fit_score_margin >= 0.0 && p.fit_score_margin <= 1.0))
     throw Error("loop detection: the fit's score margin must be in [0, 1]");
+  if (!(p.min_side_agreement >= 0.0 && p.min_side_agreement <= 1.0))
+    throw Error(
+        "loop detection: the share of returns seen from the place's side must be in [0, 1]");
   if (!IsFiniteNonNegative(p.spread_score))
     throw Error("loop detection: the spread's score scale must be finite and not negative");
 }
@@ -113,6 +116,10 @@ std::optional<LoopClosure> DetectLoop(std::span<const LaserScan> scans,
       place.Search(points, poses[current], window, params.match_window_theta, params.rival_distance,
                    params.spread_score);
   if (match.score < params.min_score || match.distinctness < params.min_distinctness) {
+    return std::nullopt;
+  }
+  if (params.min_side_agreement > 0.0 &&
+      place.SideAgreement(points, match.pose) < params.min_side_agreement) {
     return std::nullopt;
   }
 

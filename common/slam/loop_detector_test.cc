@@ -118,6 +118,38 @@ TEST(LoopDetectorTest, AScoreMarginTakesARevisitTheTrajectoryExplainsAsFitting) 
   EXPECT_TRUE(DetectLoop(r.log.scans, poses, r.later, params).has_value());
 }
 
+// A bare corridor 2 m wide round a 26 x 16 m block, as docs/worlds/ring-corridor.lines, with a
+// 4 m laser, driven one lap from its south-west corner and back down its west side. The lap's
+// end sees the outer corner of the ring; the place at its start saw the block's corner from the
+// corridors. Turned inside out, the outer corner's two walls line up with the block's two faces,
+// the scan standing inside the block, better than the place's few walls explain the true pose.
+TEST(LoopDetectorTest, AMatchInsideTheWallsItLinesUpWithIsNoLoop) {
+  const std::vector<Segment> walls = {
+      {{0, 0}, {30, 0}},       {{30, 0}, {30, 20}},      {{30, 20}, {0, 20}},
+      {{0, 20}, {0, 0}},       {{2.3, 2}, {27.2, 2}},    {{27.2, 2}, {28, 2.8}},
+      {{28, 2.8}, {28, 16.7}}, {{28, 16.7}, {26.7, 18}}, {{26.7, 18}, {2.5, 18}},
+      {{2.5, 18}, {2, 17.5}},  {{2, 17.5}, {2, 2.3}},    {{2, 2.3}, {2.3, 2}}};
+  SimulationOptions sim;
+  sim.laser.beams = 361;
+  sim.laser.max_range = 4.0;
+  sim.max_scans = 1701;
+  const Dataset log = Simulate(
+      WorldFromLineMap(LineMap(walls), "ring", {{1, 1}, {29, 1}, {29, 19}, {1, 19}, {1, 1}}), sim);
+  std::vector<Pose2> truth;
+  for (const LaserScan& s : log.scans) truth.push_back(*s.true_pose);
+  const std::size_t later = truth.size() - 1;
+  ASSERT_LT((truth[later].translation() - Eigen::Vector2d(1.0, 2.27)).norm(), 0.1);
+
+  LoopDetectionParams params;
+  params.min_side_agreement = 0.0;
+  const auto inside_out = DetectLoop(log.scans, truth, later, params);
+  ASSERT_TRUE(inside_out.has_value()) << "the look-alike is not found: the test sees nothing";
+  const Pose2 true_relative = truth[inside_out->constraint.earlier].inverse() * truth[later];
+  EXPECT_GT((inside_out->constraint.relative.translation() - true_relative.translation()).norm(),
+            2.0);
+  EXPECT_FALSE(DetectLoop(log.scans, truth, later, {}).has_value());
+}
+
 TEST(LoopDetectorTest, RecentPosesAndFarPlacesAreNoRevisit) {
   const Revisit r = DriveBack();
   std::vector<Pose2> poses(r.truth.begin(), r.truth.begin() + r.later + 1);
@@ -223,6 +255,9 @@ TEST(LoopDetectorTest, RefusesBadParametersAndScansWithoutPoses) {
   EXPECT_THROW(ValidateLoopDetectionParams(params), Error);
   params = {};
   params.fit_score_margin = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(ValidateLoopDetectionParams(params), Error);
+  params = {};
+  params.min_side_agreement = 1.01;
   EXPECT_THROW(ValidateLoopDetectionParams(params), Error);
 }
 

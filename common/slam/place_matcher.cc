@@ -1,5 +1,6 @@
 #include "common/slam/place_matcher.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -48,9 +49,14 @@ PlaceMatcher::PlaceMatcher(std::span<const LaserScan> scans, std::span<const Pos
     throw Error("place matcher: the resolution and sigma must be positive");
   }
   std::vector<Eigen::Vector2d> hits;
+  std::vector<Eigen::Vector2f> beams;  // each hit's beam direction, unit
   for (std::size_t k = 0; k < scans.size(); ++k) {
     const Pose2Frame frame(poses[k]);
-    for (const Eigen::Vector2d& p : ReturnPoints(scans[k])) hits.push_back(frame * p);
+    const Eigen::Rotation2Dd turn(poses[k].theta());
+    for (const Eigen::Vector2d& p : ReturnPoints(scans[k])) {
+      hits.push_back(frame * p);
+      beams.push_back((turn * p.normalized()).cast<float>());
+    }
   }
   if (hits.empty()) return;
   Eigen::Vector2d lo = hits.front(), hi = hits.front();
@@ -62,6 +68,7 @@ PlaceMatcher::PlaceMatcher(std::span<const LaserScan> scans, std::span<const Pos
   width_ = static_cast<int>(std::ceil((hi.x() - lo.x() + 2 * margin) / resolution)) + 1;
   height_ = static_cast<int>(std::ceil((hi.y() - lo.y() + 2 * margin) / resolution)) + 1;
   field_.assign(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), 0.0f);
+  beams_.assign(field_.size(), Eigen::Vector2f::Zero());
 
   // Stamp a Gaussian around every return, keeping the nearest one's value per cell.
   const int radius = static_cast<int>(std::ceil(3.0 * sigma / resolution));
@@ -72,7 +79,8 @@ PlaceMatcher::PlaceMatcher(std::span<const LaserScan> scans, std::span<const Pos
       kernel.push_back(static_cast<float>(std::exp(-0.5 * d2 / (sigma * sigma))));
     }
   }
-  for (const Eigen::Vector2d& h : hits) {
+  for (std::size_t i = 0; i < hits.size(); ++i) {
+    const Eigen::Vector2d& h = hits[i];
     const int cx = static_cast<int>(std::floor((h.x() - origin_.x()) / resolution));
     const int cy = static_cast<int>(std::floor((h.y() - origin_.y()) / resolution));
     for (int dy = -radius; dy <= radius; ++dy) {
@@ -81,10 +89,14 @@ PlaceMatcher::PlaceMatcher(std::span<const LaserScan> scans, std::span<const Pos
       for (int dx = -radius; dx <= radius; ++dx) {
         const int x = cx + dx;
         if (x < 0 || x >= width_) continue;
-        float& cell = field_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
-                             static_cast<std::size_t>(x)];
-        cell = std::max(
-            cell, kernel[static_cast<std::size_t>((dy + radius) * (2 * radius + 1) + dx + radius)]);
+        const std::size_t at = static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
+                               static_cast<std::size_t>(x);
+        const float value =
+            kernel[static_cast<std::size_t>((dy + radius) * (2 * radius + 1) + dx + radius)];
+        if (value > field_[at]) {
+          field_[at] = value;
+          beams_[at] = beams[i];
+        }
       }
     }
   }
@@ -116,6 +128,25 @@ double PlaceMatcher::Score(std::span<const Eigen::Vector2d> points, const Pose2&
                   static_cast<std::size_t>(fx)];
   }
   return sum / static_cast<double>(points.size());
+}
+
+double PlaceMatcher::SideAgreement(std::span<const Eigen::Vector2d> points,
+                                   const Pose2& pose) const {
+  const Eigen::Rotation2Dd turn(pose.theta());
+  const double inv = 1.0 / resolution_;
+  std::size_t near = 0, agree = 0;
+  for (const Eigen::Vector2d& p : points) {
+    const Eigen::Vector2d w = pose.translation() + turn * p;
+    const double fx = std::floor((w.x() - origin_.x()) * inv);
+    const double fy = std::floor((w.y() - origin_.y()) * inv);
+    if (fx < 0 || fy < 0 || fx >= width_ || fy >= height_) continue;
+    const std::size_t at = static_cast<std::size_t>(fy) * static_cast<std::size_t>(width_) +
+                           static_cast<std::size_t>(fx);
+    if (field_[at] < kNearField) continue;
+    ++near;
+    if ((turn * p).dot(beams_[at].cast<double>()) > 0.0) ++agree;
+  }
+  return near == 0 ? 1.0 : static_cast<double>(agree) / static_cast<double>(near);
 }
 
 void PlaceMatcher::ScoreTranslations(std::span<const Eigen::Vector2d> points, const Pose2& center,

@@ -23,6 +23,14 @@ class PlaceMatcher {
   // The mean likelihood of `points` (laser frame) seen from `pose`, 0 to 1.
   double Score(std::span<const Eigen::Vector2d> points, const Pose2& pose) const;
 
+  // The share of `points` (laser frame) seen from `pose` that land near the place's obstacles
+  // (the field at least kNearField) and see them from the side the place saw them: their beam
+  // within 90 degrees of the place's beam to the nearest return. A pose behind the walls it
+  // matches (inside a block whose faces the place saw from outside, or in the next room through
+  // a wall) lines the returns up with them as well as the right pose does, but sees each wall
+  // from its far side. 1 when no point lands near an obstacle.
+  double SideAgreement(std::span<const Eigen::Vector2d> points, const Pose2& pose) const;
+
   // Score at every translation of a (2 half_steps + 1)^2 lattice of `step` metres around
   // `center`, at heading `theta`, into `scores` row by row from the lowest y. A step of one cell
   // or of two (the coarse lattice's) takes a shortcut: each point's cell is found once, not once a
@@ -59,11 +67,15 @@ class PlaceMatcher {
 
   // The coarse lattice's step, in cells.
   static constexpr int kCoarseStepCells = 2;
+  // Near an obstacle for SideAgreement: within about 1.2 sigma of a return.
+  static constexpr float kNearField = 0.5f;
 
   double resolution_;
   Eigen::Vector2d origin_;
   int width_ = 0, height_ = 0;
   std::vector<float> field_;  // row-major
+  // Per cell, the beam direction (unit) of the return nearest it; zero where the field is.
+  std::vector<Eigen::Vector2f> beams_;
   // The field again, its columns grouped by their remainder modulo kCoarseStepCells (all rows of
   // remainder 0, then of 1, ...): along a row of the coarse lattice a point's cells lie side by
   // side here, which the vectoriser loads whole where the field would need a gather.

@@ -5,6 +5,8 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <span>
 #include <utility>
 #include <vector>
@@ -169,6 +171,35 @@ TEST(PlaceMatcherTest, ALatticeOfWholeCellStepsScoresAsEachPoseWould) {
     place.ScoreTranslations(points, center, center.theta(), step, kHalf, scores);
     EXPECT_GT(*std::max_element(scores.begin(), scores.end()), 0.2) << "step " << step;
   }
+}
+
+// A wall 2 m ahead across the laser's view, as one scan sees it.
+LaserScan ScanOfAWallAhead() {
+  LaserScan scan;
+  scan.angle_min = -0.6;
+  scan.angle_increment = 0.01;
+  scan.range_max = 8.0;
+  for (int i = 0; i <= 120; ++i) {
+    scan.ranges.push_back(static_cast<float>(2.0 / std::cos(scan.angle(i))));
+  }
+  return scan;
+}
+
+// The same wall seen from the far side lines up with the place's returns as well, and no return
+// agrees with the side the place saw it from.
+TEST(PlaceMatcherTest, AWallSeenFromItsFarSideScoresButDisagrees) {
+  const LaserScan scan = ScanOfAWallAhead();
+  const std::vector<LaserScan> scans = {scan};
+  const std::vector<Pose2> poses = {Pose2(0.0, 0.0, 0.0)};
+  const PlaceMatcher place(scans, poses, 0.05, 0.1, 1.0);
+  const std::vector<Eigen::Vector2d> points = ReturnPoints(scan);
+  const Pose2 behind(4.0, 0.0, std::numbers::pi);
+  EXPECT_GT(place.Score(points, poses[0]), 0.9);
+  EXPECT_GT(place.Score(points, behind), 0.9);
+  EXPECT_EQ(place.SideAgreement(points, poses[0]), 1.0);
+  EXPECT_EQ(place.SideAgreement(points, behind), 0.0);
+  // Returns that land far from every return of the place say nothing either way.
+  EXPECT_EQ(place.SideAgreement(points, Pose2(0.0, 5.0, 0.0)), 1.0);
 }
 
 TEST(PlaceMatcherTest, RefusesMismatchedInputs) {

@@ -92,6 +92,7 @@ RssSlamParams RssSlamParamsFromProto(const proto::SlamParams& p) {
   if (p.has_check_interval_scans()) d.check_interval = p.check_interval_scans();
   if (p.has_min_distinctness()) d.min_distinctness = p.min_distinctness();
   if (p.has_fit_score_margin()) d.fit_score_margin = p.fit_score_margin();
+  if (p.has_min_side_agreement()) d.min_side_agreement = p.min_side_agreement();
   if (p.has_rival_distance_m()) d.rival_distance = p.rival_distance_m();
   if (p.has_match_spread_score()) d.spread_score = p.match_spread_score();
   if (p.has_match_spread_in_eq7()) d.spread_weights_eq7 = p.match_spread_in_eq7();
@@ -167,6 +168,7 @@ proto::SlamParams CompleteSlamParams(const proto::SlamParams& given) {
   p.set_check_interval_scans(static_cast<std::uint32_t>(d.check_interval));
   p.set_min_distinctness(d.min_distinctness);
   p.set_fit_score_margin(d.fit_score_margin);
+  p.set_min_side_agreement(d.min_side_agreement);
   p.set_rival_distance_m(d.rival_distance);
   p.set_match_spread_score(d.spread_score);
   p.set_match_spread_in_eq7(d.spread_weights_eq7);

@@ -63,6 +63,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   p.set_max_match_window_m(2.5);
   p.set_match_spread_score(0.0);
   p.set_match_spread_in_eq7(false);
+  p.set_min_side_agreement(0.0);
   p.set_local_fitness("eval2");
   p.set_local_only(true);
   for (double v : {0.2, 0.3, 0.04}) p.add_local_max_error(v);
@@ -91,6 +92,7 @@ TEST(SlamParamsTest, SetFieldsRoundTripAndZeroIsAValue) {
   EXPECT_EQ(r.loops.max_match_window, 2.5);
   EXPECT_EQ(r.loops.spread_score, 0.0);
   EXPECT_FALSE(r.loops.spread_weights_eq7);
+  EXPECT_EQ(r.loops.min_side_agreement, 0.0);
   EXPECT_EQ(r.local.fitness, LocalFitness::kEval2);
   EXPECT_FALSE(r.global_search);
   EXPECT_EQ(r.local.max_error, Eigen::Vector3d(0.2, 0.3, 0.04));
@@ -150,6 +152,9 @@ TEST(SlamParamsTest, BadFieldsAreNamed) {
     p.set_local_hedged_shift_rad(hedged);
     EXPECT_NE(ErrorOf(p).find("hedged by a second swarm"), std::string::npos) << hedged;
   }
+  p = {};
+  p.set_min_side_agreement(-0.1);
+  EXPECT_NE(ErrorOf(p).find("seen from the place's side"), std::string::npos);
   p = {};
   p.set_local_refine_max_shift_cells(-0.5);
   EXPECT_NE(ErrorOf(p).find("largest shift"), std::string::npos);
