@@ -118,10 +118,6 @@ std::optional<LoopClosure> DetectLoop(std::span<const LaserScan> scans,
   if (match.score < params.min_score || match.distinctness < params.min_distinctness) {
     return std::nullopt;
   }
-  if (params.min_side_agreement > 0.0 &&
-      place.SideAgreement(points, match.pose) < params.min_side_agreement) {
-    return std::nullopt;
-  }
 
   const Eigen::Matrix2d weight = params.spread_score > 0.0
                                      ? LoopWeight(match.spread, poses[*earlier].theta())
@@ -133,6 +129,11 @@ std::optional<LoopClosure> DetectLoop(std::span<const LaserScan> scans,
   }
   if (params.fit_score_margin > 0.0 &&
       place.Score(points, poses[current]) >= match.score - params.fit_score_margin) {
+    return std::nullopt;
+  }
+  // Last, as the dearest test: most revisits that match fit where they are.
+  if (params.min_side_agreement > 0.0 &&
+      place.SideAgreement(points, match.pose) < params.min_side_agreement) {
     return std::nullopt;
   }
   LoopConstraint constraint{*earlier, current, poses[*earlier].inverse() * match.pose};

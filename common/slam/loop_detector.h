@@ -37,10 +37,6 @@ struct LoopDetectionParams {
   // min_distinctness (docs/rss_slam.md)...
   double min_distinctness = 0.05;
   double rival_distance = 0.3;  // m
-  // ...and at least this share of its returns that land near the place's obstacles see them from
-  // the side the place saw them (PlaceMatcher::SideAgreement): a pose inside a block whose faces
-  // it lines up, or in the next room through a wall, is a look-alike. 0: off.
-  double min_side_agreement = 0.5;
   // Above 0, a loop's match weighs its miss by direction, in eq. 7 and in the fit test below: a
   // lattice pose whose score is this much below the best counts 1/e as much in the match's
   // spread (PlaceMatcher::Match), and a miss along a direction the spread is long in counts for
@@ -61,6 +57,11 @@ struct LoopDetectionParams {
   // matches land farther from the truth than the trajectory had the scan (docs/rss_slam.md).
   // 0: off.
   double fit_score_margin = 0.025;
+  // ...nor when fewer than this share of the match's returns that land near the place's obstacles
+  // see them from the side the place saw them (PlaceMatcher::SideAgreement): a pose inside a block
+  // whose faces it lines up, or in the next room through a wall, is a look-alike. Such a match
+  // agrees at 0.02 to 0.03, the real logs' loops at 0.5 to 1 (docs/rss_slam.md). 0: off.
+  double min_side_agreement = 0.25;
   // Scans after a detection before the next one may be reported.
   std::size_t cooldown = 100;
   // A revisit is checked at every this many scans: matching costs milliseconds, and the robot

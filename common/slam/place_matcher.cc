@@ -39,6 +39,25 @@ Eigen::Matrix2d Spread(const std::vector<double>& scores, double best, double st
   return second / total - mean * mean.transpose();
 }
 
+// The surface's normal at return j of a scan (laser frame, beam order), turned toward the laser:
+// across the line through its neighbours where they lie within kMaxNeighbourGap, else straight
+// back along the beam.
+Eigen::Vector2d FacingNormal(std::span<const Eigen::Vector2d> points, std::size_t j) {
+  constexpr double kMaxNeighbourGap = 0.3;  // m: farther, the neighbours lie on another surface
+  const Eigen::Vector2d& p = points[j];
+  const Eigen::Vector2d& before = points[j > 0 ? j - 1 : j];
+  const Eigen::Vector2d& after = points[j + 1 < points.size() ? j + 1 : j];
+  const Eigen::Vector2d tangent = after - before;
+  Eigen::Vector2d normal = -p;
+  if ((before - p).norm() <= kMaxNeighbourGap && (after - p).norm() <= kMaxNeighbourGap &&
+      tangent.norm() > 0.0) {
+    normal = Eigen::Vector2d(-tangent.y(), tangent.x());
+    if (normal.dot(p) > 0.0) normal = -normal;
+  }
+  const double length = normal.norm();
+  return length > 0.0 ? Eigen::Vector2d(normal / length) : Eigen::Vector2d::Zero();
+}
+
 }  // namespace
 
 PlaceMatcher::PlaceMatcher(std::span<const LaserScan> scans, std::span<const Pose2> poses,
@@ -48,16 +67,16 @@ PlaceMatcher::PlaceMatcher(std::span<const LaserScan> scans, std::span<const Pos
   if (!(resolution > 0.0) || !(sigma > 0.0)) {
     throw Error("place matcher: the resolution and sigma must be positive");
   }
-  std::vector<Eigen::Vector2d> hits;
-  std::vector<Eigen::Vector2f> beams;  // each hit's beam direction, unit
   for (std::size_t k = 0; k < scans.size(); ++k) {
     const Pose2Frame frame(poses[k]);
     const Eigen::Rotation2Dd turn(poses[k].theta());
-    for (const Eigen::Vector2d& p : ReturnPoints(scans[k])) {
-      hits.push_back(frame * p);
-      beams.push_back((turn * p.normalized()).cast<float>());
+    const std::vector<Eigen::Vector2d> points = ReturnPoints(scans[k]);
+    for (std::size_t j = 0; j < points.size(); ++j) {
+      hits_.push_back(frame * points[j]);
+      normals_.push_back(turn * FacingNormal(points, j));
     }
   }
+  const std::vector<Eigen::Vector2d>& hits = hits_;
   if (hits.empty()) return;
   Eigen::Vector2d lo = hits.front(), hi = hits.front();
   for (const Eigen::Vector2d& h : hits) {
@@ -68,7 +87,6 @@ PlaceMatcher::PlaceMatcher(std::span<const LaserScan> scans, std::span<const Pos
   width_ = static_cast<int>(std::ceil((hi.x() - lo.x() + 2 * margin) / resolution)) + 1;
   height_ = static_cast<int>(std::ceil((hi.y() - lo.y() + 2 * margin) / resolution)) + 1;
   field_.assign(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), 0.0f);
-  beams_.assign(field_.size(), Eigen::Vector2f::Zero());
 
   // Stamp a Gaussian around every return, keeping the nearest one's value per cell.
   const int radius = static_cast<int>(std::ceil(3.0 * sigma / resolution));
@@ -79,8 +97,7 @@ PlaceMatcher::PlaceMatcher(std::span<const LaserScan> scans, std::span<const Pos
       kernel.push_back(static_cast<float>(std::exp(-0.5 * d2 / (sigma * sigma))));
     }
   }
-  for (std::size_t i = 0; i < hits.size(); ++i) {
-    const Eigen::Vector2d& h = hits[i];
+  for (const Eigen::Vector2d& h : hits) {
     const int cx = static_cast<int>(std::floor((h.x() - origin_.x()) / resolution));
     const int cy = static_cast<int>(std::floor((h.y() - origin_.y()) / resolution));
     for (int dy = -radius; dy <= radius; ++dy) {
@@ -89,14 +106,10 @@ PlaceMatcher::PlaceMatcher(std::span<const LaserScan> scans, std::span<const Pos
       for (int dx = -radius; dx <= radius; ++dx) {
         const int x = cx + dx;
         if (x < 0 || x >= width_) continue;
-        const std::size_t at = static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
-                               static_cast<std::size_t>(x);
-        const float value =
-            kernel[static_cast<std::size_t>((dy + radius) * (2 * radius + 1) + dx + radius)];
-        if (value > field_[at]) {
-          field_[at] = value;
-          beams_[at] = beams[i];
-        }
+        float& cell = field_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
+                             static_cast<std::size_t>(x)];
+        cell = std::max(
+            cell, kernel[static_cast<std::size_t>((dy + radius) * (2 * radius + 1) + dx + radius)]);
       }
     }
   }
@@ -140,11 +153,23 @@ double PlaceMatcher::SideAgreement(std::span<const Eigen::Vector2d> points,
     const double fx = std::floor((w.x() - origin_.x()) * inv);
     const double fy = std::floor((w.y() - origin_.y()) * inv);
     if (fx < 0 || fy < 0 || fx >= width_ || fy >= height_) continue;
-    const std::size_t at = static_cast<std::size_t>(fy) * static_cast<std::size_t>(width_) +
-                           static_cast<std::size_t>(fx);
-    if (field_[at] < kNearField) continue;
+    if (field_[static_cast<std::size_t>(fy) * static_cast<std::size_t>(width_) +
+               static_cast<std::size_t>(fx)] < kNearField) {
+      continue;
+    }
+    // The nearest return by a plain scan: this runs for the few matches that would be loops,
+    // where keeping a normal per cell would cost every loop check's field.
+    std::size_t nearest = 0;
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < hits_.size(); ++i) {
+      const double d2 = (hits_[i] - w).squaredNorm();
+      if (d2 < best) {
+        best = d2;
+        nearest = i;
+      }
+    }
     ++near;
-    if ((turn * p).dot(beams_[at].cast<double>()) > 0.0) ++agree;
+    if ((turn * p).dot(normals_[nearest]) < 0.0) ++agree;
   }
   return near == 0 ? 1.0 : static_cast<double>(agree) / static_cast<double>(near);
 }

@@ -25,10 +25,12 @@ class PlaceMatcher {
 
   // The share of `points` (laser frame) seen from `pose` that land near the place's obstacles
   // (the field at least kNearField) and see them from the side the place saw them: their beam
-  // within 90 degrees of the place's beam to the nearest return. A pose behind the walls it
-  // matches (inside a block whose faces the place saw from outside, or in the next room through
-  // a wall) lines the returns up with them as well as the right pose does, but sees each wall
-  // from its far side. 1 when no point lands near an obstacle.
+  // meets the surface at the nearest return from the side its normal faces (the normal across
+  // that return's neighbours in its scan, turned toward its laser). Beams along a corridor from
+  // its two ends see its walls from one side; from inside a block, from the other. A pose behind
+  // the walls it matches (inside a block whose faces the place saw from outside, or in the next
+  // room through a wall) lines the returns up with them as well as the right pose does, but sees
+  // each wall from its far side. 1 when no point lands near an obstacle.
   double SideAgreement(std::span<const Eigen::Vector2d> points, const Pose2& pose) const;
 
   // Score at every translation of a (2 half_steps + 1)^2 lattice of `step` metres around
@@ -74,8 +76,10 @@ class PlaceMatcher {
   Eigen::Vector2d origin_;
   int width_ = 0, height_ = 0;
   std::vector<float> field_;  // row-major
-  // Per cell, the beam direction (unit) of the return nearest it; zero where the field is.
-  std::vector<Eigen::Vector2f> beams_;
+  // The place's returns (world frame), and at each the surface's normal turned toward the laser
+  // that saw it (unit).
+  std::vector<Eigen::Vector2d> hits_;
+  std::vector<Eigen::Vector2d> normals_;
   // The field again, its columns grouped by their remainder modulo kCoarseStepCells (all rows of
   // remainder 0, then of 1, ...): along a row of the coarse lattice a point's cells lie side by
   // side here, which the vectoriser loads whole where the field would need a gather.

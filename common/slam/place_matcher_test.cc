@@ -202,6 +202,34 @@ TEST(PlaceMatcherTest, AWallSeenFromItsFarSideScoresButDisagrees) {
   EXPECT_EQ(place.SideAgreement(points, Pose2(0.0, 5.0, 0.0)), 1.0);
 }
 
+// The wall y = 1 (world frame) as a scan from `pose` sees it, out to 6 m.
+LaserScan ScanOfTheWallYIsOne(const Pose2& pose) {
+  LaserScan scan;
+  scan.angle_min = -1.5;
+  scan.angle_increment = 0.01;
+  scan.range_max = 8.0;
+  for (int i = 0; i <= 300; ++i) {
+    const double heading = pose.theta() + scan.angle(i);
+    const double rise = std::sin(heading);
+    const double range = rise > 0.0 ? (1.0 - pose.y()) / rise : 0.0;
+    scan.ranges.push_back(static_cast<float>(range > 0.0 && range < 6.0 ? range : 8.0));
+  }
+  return scan;
+}
+
+// A corridor's wall seen from the corridor's two ends: the two scans' beams meet it heading in
+// nearly opposite directions, from the same side.
+TEST(PlaceMatcherTest, AWallSeenFromEitherEndOfACorridorAgrees) {
+  const Pose2 west(0.0, 0.0, 0.0), east(5.0, 0.0, std::numbers::pi);
+  const std::vector<LaserScan> scans = {ScanOfTheWallYIsOne(west)};
+  const std::vector<Pose2> poses = {west};
+  const PlaceMatcher place(scans, poses, 0.05, 0.1, 1.0);
+  const std::vector<Eigen::Vector2d> points = ReturnPoints(ScanOfTheWallYIsOne(east));
+  ASSERT_GT(points.size(), 100u);
+  EXPECT_GT(place.Score(points, east), 0.5);
+  EXPECT_GT(place.SideAgreement(points, east), 0.95);
+}
+
 TEST(PlaceMatcherTest, RefusesMismatchedInputs) {
   const Dataset d = Drive();
   const std::vector<LaserScan> scans(d.scans.begin(), d.scans.begin() + 2);
