@@ -39,20 +39,22 @@ Eigen::Matrix2d Spread(const std::vector<double>& scores, double best, double st
   return second / total - mean * mean.transpose();
 }
 
-// The surface's normal at return j of a scan (laser frame, beam order), turned toward the laser:
-// across the line through its neighbours where they lie within kMaxNeighbourGap, else straight
-// back along the beam.
-Eigen::Vector2d FacingNormal(std::span<const Eigen::Vector2d> points, std::size_t j) {
+// The surface's normal at return j of one scan's returns (beam order) seen from `laser`, turned
+// toward the laser: across the line through its neighbours where they lie within
+// kMaxNeighbourGap, else straight back along the beam.
+Eigen::Vector2d FacingNormal(std::span<const Eigen::Vector2d> returns, std::size_t j,
+                             const Eigen::Vector2d& laser) {
   constexpr double kMaxNeighbourGap = 0.3;  // m: farther, the neighbours lie on another surface
-  const Eigen::Vector2d& p = points[j];
-  const Eigen::Vector2d& before = points[j > 0 ? j - 1 : j];
-  const Eigen::Vector2d& after = points[j + 1 < points.size() ? j + 1 : j];
+  const Eigen::Vector2d& p = returns[j];
+  const Eigen::Vector2d& before = returns[j > 0 ? j - 1 : j];
+  const Eigen::Vector2d& after = returns[j + 1 < returns.size() ? j + 1 : j];
   const Eigen::Vector2d tangent = after - before;
-  Eigen::Vector2d normal = -p;
+  const Eigen::Vector2d beam = p - laser;
+  Eigen::Vector2d normal = -beam;
   if ((before - p).norm() <= kMaxNeighbourGap && (after - p).norm() <= kMaxNeighbourGap &&
       tangent.norm() > 0.0) {
     normal = Eigen::Vector2d(-tangent.y(), tangent.x());
-    if (normal.dot(p) > 0.0) normal = -normal;
+    if (normal.dot(beam) > 0.0) normal = -normal;
   }
   const double length = normal.norm();
   return length > 0.0 ? Eigen::Vector2d(normal / length) : Eigen::Vector2d::Zero();
@@ -67,19 +69,16 @@ PlaceMatcher::PlaceMatcher(std::span<const LaserScan> scans, std::span<const Pos
   if (!(resolution > 0.0) || !(sigma > 0.0)) {
     throw Error("place matcher: the resolution and sigma must be positive");
   }
+  scan_starts_.push_back(0);
   for (std::size_t k = 0; k < scans.size(); ++k) {
     const Pose2Frame frame(poses[k]);
-    const Eigen::Rotation2Dd turn(poses[k].theta());
-    const std::vector<Eigen::Vector2d> points = ReturnPoints(scans[k]);
-    for (std::size_t j = 0; j < points.size(); ++j) {
-      hits_.push_back(frame * points[j]);
-      normals_.push_back(turn * FacingNormal(points, j));
-    }
+    for (const Eigen::Vector2d& p : ReturnPoints(scans[k])) hits_.push_back(frame * p);
+    scan_starts_.push_back(hits_.size());
+    lasers_.push_back(poses[k].translation());
   }
-  const std::vector<Eigen::Vector2d>& hits = hits_;
-  if (hits.empty()) return;
-  Eigen::Vector2d lo = hits.front(), hi = hits.front();
-  for (const Eigen::Vector2d& h : hits) {
+  if (hits_.empty()) return;
+  Eigen::Vector2d lo = hits_.front(), hi = hits_.front();
+  for (const Eigen::Vector2d& h : hits_) {
     lo = lo.cwiseMin(h);
     hi = hi.cwiseMax(h);
   }
@@ -97,7 +96,7 @@ PlaceMatcher::PlaceMatcher(std::span<const LaserScan> scans, std::span<const Pos
       kernel.push_back(static_cast<float>(std::exp(-0.5 * d2 / (sigma * sigma))));
     }
   }
-  for (const Eigen::Vector2d& h : hits) {
+  for (const Eigen::Vector2d& h : hits_) {
     const int cx = static_cast<int>(std::floor((h.x() - origin_.x()) / resolution));
     const int cy = static_cast<int>(std::floor((h.y() - origin_.y()) / resolution));
     for (int dy = -radius; dy <= radius; ++dy) {
@@ -157,8 +156,9 @@ double PlaceMatcher::SideAgreement(std::span<const Eigen::Vector2d> points,
                static_cast<std::size_t>(fx)] < kNearField) {
       continue;
     }
-    // The nearest return by a plain scan: this runs for the few matches that would be loops,
-    // where keeping a normal per cell would cost every loop check's field.
+    // The nearest return by a plain scan, and its normal only now: this runs for the few matches
+    // that would be loops, where keeping a normal per return or per cell would cost every loop
+    // check's field.
     std::size_t nearest = 0;
     double best = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < hits_.size(); ++i) {
@@ -168,8 +168,16 @@ double PlaceMatcher::SideAgreement(std::span<const Eigen::Vector2d> points,
         nearest = i;
       }
     }
+    // The scan that holds the nearest return: the last whose first return is at or before it.
+    const auto k = static_cast<std::size_t>(
+        std::upper_bound(scan_starts_.begin(), scan_starts_.end(), nearest) - scan_starts_.begin() -
+        1);
+    const std::span<const Eigen::Vector2d> returns(hits_.data() + scan_starts_[k],
+                                                   scan_starts_[k + 1] - scan_starts_[k]);
     ++near;
-    if ((turn * p).dot(normals_[nearest]) < 0.0) ++agree;
+    if ((turn * p).dot(FacingNormal(returns, nearest - scan_starts_[k], lasers_[k])) < 0.0) {
+      ++agree;
+    }
   }
   return near == 0 ? 1.0 : static_cast<double>(agree) / static_cast<double>(near);
 }

@@ -76,10 +76,11 @@ class PlaceMatcher {
   Eigen::Vector2d origin_;
   int width_ = 0, height_ = 0;
   std::vector<float> field_;  // row-major
-  // The place's returns (world frame), and at each the surface's normal turned toward the laser
-  // that saw it (unit).
+  // The place's returns (world frame) scan by scan: scan k's are [scan_starts_[k],
+  // scan_starts_[k + 1]), seen from lasers_[k].
   std::vector<Eigen::Vector2d> hits_;
-  std::vector<Eigen::Vector2d> normals_;
+  std::vector<std::size_t> scan_starts_;
+  std::vector<Eigen::Vector2d> lasers_;
   // The field again, its columns grouped by their remainder modulo kCoarseStepCells (all rows of
   // remainder 0, then of 1, ...): along a row of the coarse lattice a point's cells lie side by
   // side here, which the vectoriser loads whole where the field would need a gather.
