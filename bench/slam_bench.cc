@@ -68,10 +68,11 @@ void BM_GlobalSearchEvaluate(benchmark::State& state) {
   constexpr Eigen::Index kCandidates = 70;
   std::vector<Pose2> poses;
   for (const LaserScan& s : log->scans) poses.push_back(s.odometry);
-  HitCountGrid base = EmptyMapFor(*log, LocalSearchParams{});
+  HitCountGrid base = EmptyMapFor(*log, proto::RssMap{}, LocalSearchParams{});
   for (std::size_t i = stretch; i < log->scans.size(); ++i) base.AddScan(log->scans[i], poses[i]);
-  const GlobalSearchProblem problem(log->scans, poses, 0, stretch, base, GlobalSearchParams{},
-                                    std::nullopt);
+  const GlobalSearchParams params;
+  const GlobalSearchProblem problem(log->scans, poses, 0, stretch, base, params,
+                                    PartitionErrorBounds(params), std::nullopt);
   TimeEvaluate(state, problem, RandomBatch(problem, kCandidates, 1));
   state.counters["cells"] = static_cast<double>(base.width()) * base.height();
 }
@@ -91,10 +92,10 @@ void BM_StepCorrectionEvaluate(benchmark::State& state) {
   constexpr std::size_t kScan = 200;
   constexpr Eigen::Index kCandidates = 10;
   const LocalSearchParams params;
-  HitCountGrid map = EmptyMapFor(*log, params);
+  HitCountGrid map = EmptyMapFor(*log, proto::RssMap{}, params);
   for (std::size_t i = 0; i < kScan; ++i) map.AddScan(log->scans[i], log->scans[i].odometry);
   const StepCorrectionProblem problem(map, log->scans[kScan], log->scans[kScan].odometry,
-                                      params.max_error, params.fitness);
+                                      BaseErrorCube(params), ParseLocalFitness(params.fitness()));
   TimeEvaluate(state, problem, RandomBatch(problem, kCandidates, 1));
 }
 BENCHMARK(BM_StepCorrectionEvaluate)->Arg(1)->Arg(2)->UseRealTime();
@@ -117,7 +118,7 @@ void BM_PlaceMatcherSearch(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(0)));
   for (auto _ : state) {
     benchmark::DoNotOptimize(
-        place.Search(points, start, window, params.match_window_theta, params.rival_distance));
+        place.Search(points, start, window, params.match_window_rad(), params.rival_distance_m()));
   }
   omp_set_num_threads(threads);
 }
@@ -137,7 +138,7 @@ void LocalSearchIntel(benchmark::State& state, const LocalSearchParams& params) 
   Dataset first = *log;
   first.scans.resize(2000);
   for (auto _ : state) {
-    HitCountGrid map = EmptyMapFor(first, params);
+    HitCountGrid map = EmptyMapFor(first, proto::RssMap{}, params);
     benchmark::DoNotOptimize(RunLocalSearch(first, params, 1, map));
   }
   state.counters["scans"] = static_cast<double>(first.scans.size());
@@ -149,7 +150,7 @@ BENCHMARK(BM_LocalSearchIntel)->UseRealTime()->Unit(benchmark::kMillisecond);
 // The same with the seen space's edge left free: the map also traces every beam.
 void BM_LocalSearchIntelEdgeFree(benchmark::State& state) {
   LocalSearchParams params;
-  params.free_frontier = true;
+  params.set_free_frontier(true);
   LocalSearchIntel(state, params);
 }
 BENCHMARK(BM_LocalSearchIntelEdgeFree)->UseRealTime()->Unit(benchmark::kMillisecond);
@@ -159,10 +160,10 @@ BENCHMARK(BM_LocalSearchIntelEdgeFree)->UseRealTime()->Unit(benchmark::kMillisec
 void BM_RssSlamIntel(benchmark::State& state) {
   const Dataset* log = IntelOrSkip(state);
   if (!log) return;
-  RssSlamParams params;
-  params.max_scans = static_cast<std::size_t>(state.range(0));
-  const std::size_t scans = params.max_scans > 0 ? params.max_scans : log->scans.size();
-  for (auto _ : state) benchmark::DoNotOptimize(RunRssSlam(*log, params, 1));
+  proto::SlamParams params;
+  params.set_max_scans(static_cast<std::uint32_t>(state.range(0)));
+  const std::size_t scans = ScansToMap(*log, params);
+  for (auto _ : state) benchmark::DoNotOptimize(RunRssSlam(*log, params));
   const double recorded = log->scans[scans - 1].timestamp - log->scans.front().timestamp;
   state.counters["scans"] = static_cast<double>(scans);
   state.counters["x_real_time"] = benchmark::Counter(

@@ -14,8 +14,6 @@
 namespace evoslam::cli {
 namespace {
 
-namespace pb = google::protobuf;
-
 // The comma-separated pieces of `text` ("" gives one empty piece).
 std::vector<std::string_view> SplitCommas(std::string_view text) {
   std::vector<std::string_view> pieces;
@@ -37,49 +35,6 @@ std::optional<T> ParseNumber(std::string_view text) {
     if (!std::isfinite(v)) return std::nullopt;
   }
   return v;
-}
-
-std::optional<bool> ParseBool(std::string_view text) {
-  if (text == "true" || text == "1") return true;
-  if (text == "false" || text == "0") return false;
-  return std::nullopt;
-}
-
-// Sets (or, for a repeated field, appends) one value; false when it does not parse.
-bool SetOne(pb::Message& m, const pb::FieldDescriptor* f, std::string_view text) {
-  const pb::Reflection& r = *m.GetReflection();
-  const bool rep = f->is_repeated();
-  switch (f->cpp_type()) {
-    case pb::FieldDescriptor::CPPTYPE_DOUBLE:
-      if (const auto v = ParseNumber<double>(text)) {
-        rep ? r.AddDouble(&m, f, *v) : r.SetDouble(&m, f, *v);
-        return true;
-      }
-      return false;
-    case pb::FieldDescriptor::CPPTYPE_UINT32:
-      if (const auto v = ParseNumber<std::uint32_t>(text)) {
-        rep ? r.AddUInt32(&m, f, *v) : r.SetUInt32(&m, f, *v);
-        return true;
-      }
-      return false;
-    case pb::FieldDescriptor::CPPTYPE_UINT64:
-      if (const auto v = ParseNumber<std::uint64_t>(text)) {
-        rep ? r.AddUInt64(&m, f, *v) : r.SetUInt64(&m, f, *v);
-        return true;
-      }
-      return false;
-    case pb::FieldDescriptor::CPPTYPE_BOOL:
-      if (const auto v = ParseBool(text)) {
-        rep ? r.AddBool(&m, f, *v) : r.SetBool(&m, f, *v);
-        return true;
-      }
-      return false;
-    case pb::FieldDescriptor::CPPTYPE_STRING:
-      rep ? r.AddString(&m, f, std::string(text)) : r.SetString(&m, f, std::string(text));
-      return true;
-    default:
-      return false;
-  }
 }
 
 // A check that the text is a finite number for which `ok` holds.
@@ -105,22 +60,6 @@ Pose2 ParsePose(const std::string& text, const std::string& flag) {
   if (values.size() != 3)
     throw Error(flag + ": expected x,y,theta (three numbers), got '" + text + "'");
   return Pose2(values[0], values[1], values[2]);
-}
-
-void SetField(pb::Message& message, const std::string& name, std::string_view text) {
-  const pb::FieldDescriptor* field = message.GetDescriptor()->FindFieldByName(name);
-  if (field == nullptr) {
-    throw Error(message.GetDescriptor()->name() + " has no field '" + name + "'");
-  }
-  message.GetReflection()->ClearField(&message, field);
-  const std::vector<std::string_view> values =
-      field->is_repeated() ? SplitCommas(text) : std::vector<std::string_view>{text};
-  for (const std::string_view v : values) {
-    if (!SetOne(message, field, v)) {
-      throw Error("'" + std::string(text) + "' is not " +
-                  (field->is_repeated() ? "a list of " : "a ") + field->cpp_type_name() + " value");
-    }
-  }
 }
 
 CLI::Validator PositiveNumber() {

@@ -1,5 +1,4 @@
 #include <fmt/format.h>
-#include <google/protobuf/text_format.h>
 #include <spdlog/spdlog.h>
 
 #include <cstdint>
@@ -45,127 +44,120 @@ SimulationOptions WorldDrive(std::uint64_t seed, std::size_t scans) {
 }
 
 struct SlamArgs {
-  std::string log, world, relations;
+  std::string log, world, relations, config;
   proto::SlamParams params;          // the parameters given by their flags; the rest are unset
   std::vector<std::string> assigns;  // --param NAME=VALUE
   bool print_params = false;
   JobRunArgs run;
 };
 
-// The field's type as CLI11 names an option's value.
-std::string TypeName(const google::protobuf::FieldDescriptor& field) {
-  switch (field.cpp_type()) {
-    case google::protobuf::FieldDescriptor::CPPTYPE_DOUBLE:
-      return "FLOAT";
-    case google::protobuf::FieldDescriptor::CPPTYPE_STRING:
-      return "TEXT";
-    default:
-      return "UINT";
-  }
+// The parameter's type as CLI11 names an option's value.
+std::string TypeName(const std::string& default_text) {
+  if (default_text.starts_with('"')) return "TEXT";
+  return default_text.find_first_not_of("0123456789") == std::string::npos ? "UINT" : "FLOAT";
 }
 
-// A flag that sets the SlamParams field `field`, which stays unset (at its default) without it.
-// Its value is checked against the field's type here, and against the rest by ParamsFrom.
+// A flag that sets the SLAM parameter `name` (a dotted path from the top), which stays unset (at
+// its default) without it. Its value is checked against the parameter's type here, and against
+// the rest by ParamsFrom.
 CLI::Option* AddParamOption(CLI::App* cmd, proto::SlamParams& params, const std::string& flag,
-                            const std::string& field, const std::string& help) {
-  const proto::SlamParams defaults = CompleteSlamParams({});
-  const auto* descriptor = defaults.GetDescriptor()->FindFieldByName(field);
-  std::string value;
-  google::protobuf::TextFormat::PrintFieldValueToString(defaults, descriptor, -1, &value);
+                            const std::string& name, const std::string& help) {
+  const std::string value = SlamParamText(CompleteSlamParams({}), name);
   return cmd
       ->add_option_function<std::string>(
           flag,
-          [&params, flag, field](const std::string& text) {
+          [&params, flag, name](const std::string& text) {
             try {
-              SetField(params, field, text);
+              SetSlamParam(params, name, text);
             } catch (const Error& e) {
               throw CLI::ValidationError(flag, e.what());
             }
           },
           help + " (default " + value + ")")
-      ->type_name(TypeName(*descriptor));
+      ->type_name(TypeName(value));
 }
 
-// The flags of the SLAM parameters users tune.
+// The flags of the SLAM parameters users tune most; --param and --config reach every one.
 void AddSlamParamOptions(CLI::App* cmd, SlamArgs& a) {
   proto::SlamParams& p = a.params;
   AddParamOption(cmd, p, "--method", "method", "SLAM method: rss, paper 002's reduced search space")
-      ->check(CLI::IsMember({"rss"}));
+      ->check(CLI::IsMember(SlamMethodNames()));
   AddParamOption(cmd, p, "--seed", "seed", "random seed, of the simulation too");
   AddParamOption(cmd, p, "--max-scans", "max_scans",
                  "map only the first N scans, 0: all (with --world, simulate only those)");
   cmd->add_flag_function(
       "--lenient", [&p](std::int64_t) { p.set_lenient(true); },
       "skip malformed log lines and report how many");
-  AddParamOption(cmd, p, "--local-fitness", "local_fitness",
+  AddParamOption(cmd, p, "--local-fitness", "rss.local.fitness",
                  "local search fitness: eval1 (occupied cells, eq. 1) or eval2 (observations per "
                  "occupied cell, eq. 2)")
       ->check(CLI::IsMember({"eval1", "eval2"}));
-  AddParamOption(cmd, p, "--particles", "local_particles", "local search: PSO particles")
+  AddParamOption(cmd, p, "--particles", "rss.local.particles", "local search: PSO particles")
       ->check(CLI::Range(std::size_t{2}, kMaxLocalParticles));
-  AddParamOption(cmd, p, "--local-iterations", "local_iterations",
+  AddParamOption(cmd, p, "--local-iterations", "rss.local.iterations",
                  "local search: PSO iterations per scan")
       ->check(CLI::Range(std::size_t{1}, kMaxLocalIterations));
-  AddParamOption(cmd, p, "--resolution", "resolution_m", "map cell size, m")
+  AddParamOption(cmd, p, "--resolution", "rss.map.cell_size_m", "map cell size, m")
       ->check(PositiveNumber());
   cmd->add_flag_function(
-      "--local-only", [&p](std::int64_t) { p.set_local_only(true); },
+      "--local-only", [&p](std::int64_t) { SetSlamParam(p, "rss.global.enabled", "false"); },
       "local search alone: no loop detection, no global search");
-  AddParamOption(cmd, p, "--global-every", "global_every",
+  AddParamOption(cmd, p, "--global-every", "rss.global.every_scans",
                  "K: a global search every K scans besides those on loops (0: on loops only)");
-  AddParamOption(cmd, p, "--partitions", "partitions", "L: partitions of a global search's stretch")
+  AddParamOption(cmd, p, "--partitions", "rss.global.partitions",
+                 "L: partitions of a global search's stretch")
       ->check(CLI::Range(std::size_t{1}, kMaxPartitions));
-  AddParamOption(cmd, p, "--generations", "generations", "generations of each global search")
+  AddParamOption(cmd, p, "--generations", "rss.global.generations",
+                 "generations of each global search")
       ->check(CLI::Range(1, 1000000));
-  AddParamOption(cmd, p, "--islands", "islands", "islands of each global search")
+  AddParamOption(cmd, p, "--islands", "rss.global.islands", "islands of each global search")
       ->check(CLI::Range(1, 4096));
-  AddParamOption(cmd, p, "--preset", "preset",
+  AddParamOption(cmd, p, "--preset", "rss.global.preset",
                  "the algorithm each island runs, as a paper's preset (docs/engine.md)")
       ->check(CLI::IsMember(PresetNames()));
-  AddParamOption(cmd, p, "--max-stretch", "max_stretch",
+  AddParamOption(cmd, p, "--max-stretch", "rss.global.max_stretch_scans",
                  "scans a global search covers at most (0: the whole loop, or all since the last)");
-  AddParamOption(cmd, p, "--loop-radius", "revisit_radius_m",
+  AddParamOption(cmd, p, "--loop-radius", "rss.loops.revisit_radius_m",
                  "loop detection: distance from an earlier pose that counts as a revisit, m")
       ->check(PositiveNumber());
-  AddParamOption(cmd, p, "--min-match-score", "min_match_score",
+  AddParamOption(cmd, p, "--min-match-score", "rss.loops.min_match_score",
                  "loop detection: the fraction of a scan's returns that must match the earlier "
                  "place, (0, 1]")
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--param", a.assigns,
-                  "NAME=VALUE: any SLAM parameter by its name in proto/evoslam/slam.proto (a list "
-                  "comma-separated), e.g. sigma=0.2,0.2,0.2; applied after the flags above");
+                  "NAME=VALUE: any SLAM parameter by its dotted name (docs/configuration.md), the "
+                  "method's prefix optional, e.g. local.particles=20; applied after the flags")
+      ->type_name("NAME=VALUE");
+  cmd->add_option("--config", a.config,
+                  "a text-format parameter file, as --print-params writes one; the flags and "
+                  "--param apply on top of it")
+      ->type_name("FILE");
   cmd->add_flag("--print-params", a.print_params,
-                "print every SLAM parameter as the run would use it, by name, and exit");
+                "print every SLAM parameter as the run would use it, in the form --config reads, "
+                "and exit");
 }
 
 // The parameters the command line gives, the log named as `log`. Values the parser could not
-// check alone are refused as command-line errors, before any file is read or written.
+// check alone are refused as command-line errors, before any file is written.
 proto::SlamParams ParamsFrom(const SlamArgs& a, const std::string& log) try {
-  proto::SlamParams params = a.params;
+  proto::SlamParams params;
+  if (!a.config.empty()) params = ReadSlamParamsFile(a.config);
+  params.MergeFrom(a.params);
   for (const std::string& assign : a.assigns) {
     const std::size_t eq = assign.find('=');
     if (eq == std::string::npos) throw Error("--param: expected NAME=VALUE, got '" + assign + "'");
-    const std::string name = assign.substr(0, eq);
-    if (name == "log") throw Error("--param log: the log is --log or --world");
     try {
-      SetField(params, name, std::string_view(assign).substr(eq + 1));
+      SetSlamParam(params, std::string_view(assign).substr(0, eq),
+                   std::string_view(assign).substr(eq + 1));
     } catch (const Error& e) {
       throw Error("--param " + assign + ": " + e.what());
     }
   }
-  params.set_log(log);
   CompleteSlamParams(params);  // throws Error naming the first bad parameter
+  params.set_log(log);
   return params;
 } catch (const Error& e) {
   throw CLI::ValidationError(e.what());
-}
-
-void PrintParams(const proto::SlamParams& complete) {
-  google::protobuf::TextFormat::Printer printer;
-  printer.SetUseShortRepeatedPrimitives(true);
-  std::string text;
-  printer.PrintToString(complete, &text);
-  std::printf("%s", text.c_str());
 }
 
 void Run(const SlamArgs& a) {
@@ -174,7 +166,9 @@ void Run(const SlamArgs& a) {
   const proto::SlamParams params = ParamsFrom(a, log);
   const proto::SlamParams complete = CompleteSlamParams(params);
   if (a.print_params) {
-    PrintParams(complete);
+    proto::SlamParams printed = complete;
+    printed.clear_log();
+    std::printf("%s", SlamParamsText(printed).c_str());
     return;
   }
   CheckJobRunArgs(a.run);
@@ -192,7 +186,9 @@ void Run(const SlamArgs& a) {
   }
 
   ServiceSession session(a.run.service,
-                         ChooseEmbeddedLayout(complete.local_only() ? 1 : complete.islands(),
+                         ChooseEmbeddedLayout(complete.rss().global().enabled()
+                                                  ? complete.rss().global().islands()
+                                                  : 1,
                                               a.run.workers, a.run.threads));
   ServiceClient& client = session.client();
   proto::JobSpec spec;

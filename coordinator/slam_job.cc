@@ -7,6 +7,7 @@
 #include "common/service/slam_checkpoint.h"
 #include "common/slam/rss_slam.h"
 #include "common/slam/slam_params.h"
+#include "common/slam/slam_proto.h"
 
 namespace evoslam {
 
@@ -22,12 +23,11 @@ std::vector<proto::ResultFile> RunSlamJob(const JobContext& context) {
   const proto::JobSpec& spec = context.spec;
   const proto::ProblemSpec job = SlamProblemOf(spec);
   const proto::SlamParams& params = job.slam();
-  const RssSlamParams rss = RssSlamParamsFromProto(params);
   const Dataset dataset = LoadJobLog(*context.files, spec.log(), params.lenient());
   // Read before the search, so that a bad file fails the job at once, not after all its work.
   const std::optional<NamedRelations> relations =
       LoadJobRelations(*context.files, spec.relations(), dataset);
-  const std::size_t scans = ScansToMap(dataset, rss);
+  const std::size_t scans = ScansToMap(dataset, params);
 
   const auto resume = ResumeState<proto::SlamCheckpoint>(context, RssSlamStateFromProto);
   CheckpointThrottle throttle(context);
@@ -54,7 +54,7 @@ std::vector<proto::ResultFile> RunSlamJob(const JobContext& context) {
   };
   // Progress shows where the job stands from the start, a resumed job included.
   ReportProgress(context, "local search", resume ? resume->next_scan : 0, scans, evaluations);
-  const RssSlamResult result = RunRssSlam(dataset, rss, params.seed(), runtime);
+  const RssSlamResult result = RunRssSlam(dataset, params, runtime);
 
   return SlamOutputs(dataset, params, result, relations, context.worker_threads);
 }

@@ -47,22 +47,22 @@ class SlamJobTest : public ServiceTest {
     proto::SlamParams p;
     p.set_log("drive.clf");
     p.set_seed(kSeed);
-    p.set_islands(2);
-    p.set_generations(20);  // two epochs: migrants travel between them
-    p.set_partitions(4);
-    p.set_global_every(static_cast<std::uint32_t>(Scans(100)));
-    p.set_check_interval_scans(1);  // the drive's one revisit lasts a few scans
+    p.mutable_rss()->mutable_global()->set_islands(2);
+    p.mutable_rss()->mutable_global()->set_generations(20);  // two epochs: migrants travel between them
+    p.mutable_rss()->mutable_global()->set_partitions(4);
+    p.mutable_rss()->mutable_global()->set_every_scans(static_cast<std::uint32_t>(Scans(100)));
+    p.mutable_rss()->mutable_loops()->set_check_interval_scans(1);  // the drive's one revisit lasts a few scans
     // Ten times 002's PSO iterations: the local search then lasts about a second, a window wide
     // enough for a test to catch the job part-way between its polls.
-    p.set_local_iterations(300);
+    p.mutable_rss()->mutable_local()->set_iterations(300);
     // A local search of one fixed cube per step, unrefined, leaves the revisit off the map, and its
     // match, not distinct enough to be trusted in a real run, is let through: here it only has to
     // start a loop's search, whose tasks the service must run as RunRssSlam does.
-    p.set_local_recentres(0);
-    p.set_local_turn_error_per_rad(0.0);
-    p.set_local_carried_turn_error(0.0);
-    p.set_local_refine_iterations(0);
-    p.set_min_distinctness(0.0);
+    p.mutable_rss()->mutable_local()->set_recentres(0);
+    p.mutable_rss()->mutable_local()->set_heading_range_per_turn(0.0);
+    p.mutable_rss()->mutable_local()->set_heading_range_per_correction(0.0);
+    p.mutable_rss()->mutable_local()->mutable_refine()->set_iterations(0);
+    p.mutable_rss()->mutable_loops()->set_min_distinctness(0.0);
     return p;
   }
 
@@ -72,7 +72,7 @@ class SlamJobTest : public ServiceTest {
     const fs::path out = dir_ / "slam-reference";
     const evoslam::Dataset drive = evoslam::ReadCarmen(DriveLog());
     const evoslam::RssSlamResult result =
-        evoslam::RunRssSlam(drive, evoslam::RssSlamParamsFromProto(Params()), kSeed);
+        evoslam::RunRssSlam(drive, Params());
     EXPECT_FALSE(result.global_searches.empty()) << "no global search: the job sends no task";
     if (kScaleDown == 1) {
       EXPECT_FALSE(result.loops.empty()) << "no loop: none is searched";
@@ -123,13 +123,13 @@ TEST_F(SlamJobTest, OnTwoWorkerProcessesItWritesWhatRunRssSlamWritesInProcess) {
 
   // A bad parameter is refused at submit, by name.
   proto::SlamParams bad = Params();
-  bad.add_sigma(0.3);
+  bad.mutable_rss()->mutable_global()->set_spread_x(0.0);
   try {
     SubmitSlam(client, bad);
-    ADD_FAILURE() << "a SLAM job with one sigma value was accepted";
+    ADD_FAILURE() << "a SLAM job with a Gaussian of no width was accepted";
   } catch (const evoslam::ProtocolError& e) {
     EXPECT_EQ(e.code(), proto::ERROR_CODE_INVALID);
-    EXPECT_NE(std::string(e.what()).find("sigma"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("global.spread"), std::string::npos) << e.what();
   }
   // A malformed relations file fails the job, by name and line, before a scan is searched.
   std::ofstream(Path("bad.relations")) << "1.0 2.0 0.5\n";

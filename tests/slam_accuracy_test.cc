@@ -50,8 +50,8 @@ TEST(LocalSearchAccuracyTest, CorrectsDriftingOdometryOnARealisticRoute) {
 
   for (const LocalFitness fitness : {LocalFitness::kEval1, LocalFitness::kEval2}) {
     LocalSearchParams params;
-    params.fitness = fitness;
-    HitCountGrid map = EmptyMapFor(d, params);
+    params.set_fitness(std::string(LocalFitnessName(fitness)));
+    HitCountGrid map = EmptyMapFor(d, {}, params);
     const LocalSearchResult r = RunLocalSearch(d, params, 1, map);
     ASSERT_EQ(r.trajectory.size(), d.scans.size());
     EXPECT_EQ(r.evaluations, (d.scans.size() - 1) * 10 * 31);
@@ -83,9 +83,9 @@ TEST(LocalSearchAccuracyTest, WithSparseBeamsTheSeenSpacesEdgeLeftFreeStopsTheSt
     const Dataset d = Simulate(BuiltinWorld("office-cluster"), sim);
     for (const bool edge_free : {false, true}) {
       LocalSearchParams params;
-      params.hedged_shift = 0.0;
-      params.free_frontier = edge_free;
-      HitCountGrid map = EmptyMapFor(d, params);
+      params.set_second_swarm_above_rad(0.0);
+      params.set_free_frontier(edge_free);
+      HitCountGrid map = EmptyMapFor(d, {}, params);
       const double ate = Ate(RunLocalSearch(d, params, 1, map).trajectory, d);
       (edge_free ? free : counted) += ate / 3;
     }
@@ -110,8 +110,8 @@ TEST(LocalSearchAccuracyTest, WeighingAGoodOdometerAgainstANoisyLaserKeepsTheSte
     const Dataset d = Simulate(BuiltinWorld("office-cluster"), sim);
     for (const double weight : {0.0, 0.05}) {
       LocalSearchParams params;
-      params.odometry_weight = weight;
-      HitCountGrid map = EmptyMapFor(d, params);
+      params.set_odometry_weight(weight);
+      HitCountGrid map = EmptyMapFor(d, {}, params);
       const double ate = Ate(RunLocalSearch(d, params, 1, map).trajectory, d);
       (weight > 0.0 ? weighed : alone) += ate / 2;
     }
@@ -146,7 +146,7 @@ std::size_t LargestStretch(const Dataset& d, Change change) {
 // returns the clean drive's error.
 double ExpectTheStallCostsNothing(const Dataset& clean, const Dataset& stalled) {
   const LocalSearchParams params;
-  HitCountGrid clean_map = EmptyMapFor(clean, params), stalled_map = EmptyMapFor(stalled, params);
+  HitCountGrid clean_map = EmptyMapFor(clean, {}, params), stalled_map = EmptyMapFor(stalled, {}, params);
   const double clean_ate = Ate(RunLocalSearch(clean, params, 1, clean_map).trajectory, clean);
   const double stalled_ate =
       Ate(RunLocalSearch(stalled, params, 1, stalled_map).trajectory, stalled);
@@ -169,13 +169,13 @@ TEST(LocalSearchAccuracyTest, AnOdometryStallWhileTurningIsFilledInAndTheDriveSt
   for (std::size_t k = turn; k < turn + 5; ++k) {
     stalled.scans[k].odometry = stalled.scans[turn - 1].odometry;
   }
-  ASSERT_EQ(FindOdometryStalls(stalled.scans, LocalSearchParams().max_error).size(), 1u);
+  ASSERT_EQ(FindOdometryStalls(stalled.scans, BaseErrorCube(LocalSearchParams())).size(), 1u);
   const double clean_ate = ExpectTheStallCostsNothing(clean, stalled);
 
   // The whole run's local search fills it in too, and says where.
   RssSlamParams rss;
-  rss.global_search = false;
-  const RssSlamResult r = RunRssSlam(stalled, rss, 1);
+  rss.mutable_global()->set_enabled(false);
+  const RssSlamResult r = testing::RunRss(stalled, rss, 1);
   ASSERT_EQ(r.odometry_stalls.size(), 1u);
   EXPECT_EQ(r.odometry_stalls[0].first, turn);
   EXPECT_EQ(r.odometry_stalls[0].last, turn + 4);
@@ -197,7 +197,7 @@ TEST(LocalSearchAccuracyTest, APositionHeldWhileTheHeadingReadsOnIsFilledInToo) 
         Pose2(stalled.scans[stretch - 1].odometry.translation(), stalled.scans[k].odometry.theta());
   }
   const std::vector<OdometryStall> stalls =
-      FindOdometryStalls(stalled.scans, LocalSearchParams().max_error);
+      FindOdometryStalls(stalled.scans, BaseErrorCube(LocalSearchParams()));
   ASSERT_EQ(stalls.size(), 1u);
   EXPECT_FALSE(stalls[0].heading_held);
   ExpectTheStallCostsNothing(clean, stalled);
@@ -243,8 +243,9 @@ TEST(GlobalSearchAccuracyTest, ClosingALoopWithThe002SearchUndoesTheDrift) {
       loop.log.scans[loop.earlier].true_pose->inverse() * *loop.log.scans[loop.later].true_pose};
   const HitCountGrid base(0.05, Eigen::Vector2d(-2, -2), 600, 460);
   GlobalSearchParams params;
-  params.partitions = 4;
-  const GlobalSearchProblem problem(loop.log.scans, odometry, 0, n, base, params, constraint);
+  params.set_partitions(4);
+  const GlobalSearchProblem problem(loop.log.scans, odometry, 0, n, base, params,
+                                    PartitionErrorBounds(params), constraint);
 
   const Preset& preset = FindPreset("mu+lambda-002");
   const std::unique_ptr<Algorithm> ea = MakeAlgorithm(preset.algorithm);
@@ -279,11 +280,11 @@ TEST(RssSlamAccuracyTest, MapsTheOfficeClusterFromDriftingOdometry) {
   std::vector<StampedPose> odometry;
   for (const LaserScan& s : d.scans) odometry.push_back({s.timestamp, s.odometry});
   RssSlamParams params;
-  params.generations = 30;
-  params.global_every = 300;  // the searches run even where no loop is found
-  const RssSlamResult slam = RunRssSlam(d, params, 1);
-  params.global_search = false;
-  const RssSlamResult local = RunRssSlam(d, params, 1);
+  params.mutable_global()->set_generations(30);
+  params.mutable_global()->set_every_scans(300);  // the searches run even where no loop is found
+  const RssSlamResult slam = testing::RunRss(d, params, 1);
+  params.mutable_global()->set_enabled(false);
+  const RssSlamResult local = testing::RunRss(d, params, 1);
 
   const double odometry_ate = Ate(odometry, d), local_ate = Ate(local.trajectory, d),
                slam_ate = Ate(slam.trajectory, d);
@@ -303,9 +304,9 @@ TEST(RssSlamAccuracyTest, MapsTheOfficeClusterFromDriftingOdometry) {
 // 002's cube: its heading range grows neither with the turn odometry reports nor with the
 // correction the step before took.
 void UseFixedCube(LocalSearchParams& local) {
-  local.turn_error_per_rad = 0.0;
-  local.carried_turn_error = 0.0;
-  local.carried_turn_shift = 0.0;
+  local.set_heading_range_per_turn(0.0);
+  local.set_heading_range_per_correction(0.0);
+  local.set_heading_shift_per_correction(0.0);
 }
 
 // With a 4 m laser the office cluster's hallway and look-alike offices match well in many
@@ -327,9 +328,9 @@ Dataset AmbiguousDrive() {
 TEST(LoopDetectionAccuracyTest, NoLoopFoundOnAnAmbiguousDriveIsAnotherPlace) {
   const Dataset d = AmbiguousDrive();
   RssSlamParams params;
-  params.local.min_constraint_ratio = 0.0;
-  params.generations = 10;
-  const RssSlamResult slam = RunRssSlam(d, params, 1);
+  params.mutable_local()->set_odometry_below_information(0.0);
+  params.mutable_global()->set_generations(10);
+  const RssSlamResult slam = testing::RunRss(d, params, 1);
   EXPECT_GE(slam.loops.size(), 2u);
   for (const LoopClosure& loop : slam.loops) {
     const LoopConstraint& c = loop.constraint;
@@ -338,34 +339,6 @@ TEST(LoopDetectionAccuracyTest, NoLoopFoundOnAnAmbiguousDriveIsAnotherPlace) {
     EXPECT_LT(error.translation().norm(), 0.35) << "loop " << c.later << " back to " << c.earlier;
     EXPECT_LT(std::abs(error.theta()), 0.03) << "loop " << c.later << " back to " << c.earlier;
   }
-}
-
-// The same ambiguous drive's loop searches, allowed to blur the map by up to 10 %: those that do
-// are applied only when they close the loop (eq. 7) by more than half. The local search is 002's
-// (the heading's range fixed, no refinement below a cell, no prediction kept where the scan fixes
-// nothing) on 5 cm cells, and revisits 10 cm off are loops however well the trajectory already
-// explains the scan, so that it leaves loops open enough to search and some searches' gains fall
-// short (with 6 cm cells, a 15 cm tolerance, or the score margin, none does).
-TEST(RssSlamAccuracyTest, ACorrectionThatBlursTheMapIsAppliedOnlyForTheMinimumEq7Gain) {
-  const Dataset d = AmbiguousDrive();
-  RssSlamParams params;
-  UseFixedCube(params.local);
-  params.local.refine.iterations = 0;
-  params.local.min_constraint_ratio = 0.0;
-  params.local.resolution = 0.05;
-  params.loops.fit_tolerance = 0.1;
-  params.loops.fit_score_margin = 0.0;
-  params.generations = 10;
-  params.sharpness_tolerance = 0.1;
-  params.min_eq7_gain = 0.5;
-  const RssSlamResult slam = RunRssSlam(d, params, 1);
-  std::size_t refused = 0;
-  for (const GlobalSearchRecord& g : slam.global_searches) {
-    if (g.after[0] < g.before[0]) continue;  // a sharper map is always worth it
-    EXPECT_EQ(g.applied, g.after[1] < 0.5 * g.before[1]) << g.first << " to " << g.last;
-    if (!g.applied && g.after[1] < g.before[1]) ++refused;
-  }
-  EXPECT_GT(refused, 0u) << "no search was refused for too small a gain: the test shows nothing";
 }
 
 // A raw log of ../shared/data and its relations; nullopt when the data is absent.
@@ -393,11 +366,11 @@ TEST(RssSlamAccuracyTest, OnTheIntelLabTheGlobalSearchesHalveTheFixedCubesError)
   const std::vector<Relation>& relations = intel->relations;
   constexpr std::size_t kScans = 3000;
   const auto run = [&](bool fixed_cube, bool global_search) {
-    RssSlamParams params;
-    params.max_scans = kScans;
-    if (fixed_cube) UseFixedCube(params.local);
-    params.global_search = global_search;
-    const RssSlamResult r = RunRssSlam(d, params, 1);
+    proto::SlamParams params;
+    params.set_max_scans(kScans);
+    if (fixed_cube) UseFixedCube(*params.mutable_rss()->mutable_local());
+    params.mutable_rss()->mutable_global()->set_enabled(global_search);
+    const RssSlamResult r = RunRssSlam(d, params);
     if (global_search && fixed_cube) {
       EXPECT_FALSE(r.loops.empty()) << "no loop: the global searches have nothing to close";
     }
@@ -444,8 +417,8 @@ TEST(RssSlamAccuracyTest, OnAcesLoopsOfThousandsOfStepsCloseWhenTheirSearchesBen
   }
   const auto run = [&](std::size_t max_stretch) {
     RssSlamParams params;
-    params.max_stretch = max_stretch;
-    const RssSlamResult r = RunRssSlam(d, params, 8);
+    params.mutable_global()->set_max_stretch_scans(max_stretch);
+    const RssSlamResult r = testing::RunRss(d, params, 8);
     EXPECT_GE(r.loops.size(), 2u) << "max_stretch " << max_stretch;
     return std::pair(ComputeRelationErrors(r.trajectory, relations),
                      ComputeRelationErrors(r.trajectory, across));
@@ -475,11 +448,11 @@ TEST(RssSlamAccuracyTest, OnAcesReadingTheCountsAlignsNeighbouringScansCloser) {
   // The mean over seeds 1 to 4: one seed gains 2 to 12 %.
   const auto run = [&](double wall_share) {
     RssSlamParams params;
-    params.global_search = false;
-    params.local.refine.wall_share = wall_share;
+    params.mutable_global()->set_enabled(false);
+    params.mutable_local()->mutable_refine()->set_wall_share(wall_share);
     double sum = 0.0;
     for (std::uint64_t seed = 1; seed <= 4; ++seed) {
-      const RelationErrors e = ComputeRelationErrors(RunRssSlam(d, params, seed).trajectory, near);
+      const RelationErrors e = ComputeRelationErrors(testing::RunRss(d, params, seed).trajectory, near);
       EXPECT_GT(e.relations, 1000u);
       sum += e.translation_mean;
     }
@@ -505,8 +478,8 @@ TEST(RssSlamAccuracyTest, OnMitCsailTwoSeedsDrawTheSameBuildingOnceThePositionSt
   const std::optional<Dataset> d = ReadMitCsail();
   if (!d) GTEST_SKIP() << "real data absent from " << EVOSLAM_DATA_DIR;
   RssSlamParams params;
-  params.local.hedged_shift = 0.0;
-  const RssSlamResult a = RunRssSlam(*d, params, 3), b = RunRssSlam(*d, params, 9);
+  params.mutable_local()->set_second_swarm_above_rad(0.0);
+  const RssSlamResult a = testing::RunRss(*d, params, 3), b = testing::RunRss(*d, params, 9);
   std::vector<std::size_t> position_stalls;
   for (const OdometryStall& stall : a.odometry_stalls) {
     if (!stall.heading_held) position_stalls.push_back(stall.first);
@@ -522,7 +495,7 @@ TEST(RssSlamAccuracyTest, OnMitCsailASecondSwarmKeepsASeedFromSlippingInAFastTur
   const std::optional<Dataset> d = ReadMitCsail();
   if (!d) GTEST_SKIP() << "real data absent from " << EVOSLAM_DATA_DIR;
   const RssSlamParams params;
-  const RssSlamResult a = RunRssSlam(*d, params, 2), b = RunRssSlam(*d, params, 3);
+  const RssSlamResult a = testing::RunRss(*d, params, 2), b = testing::RunRss(*d, params, 3);
   EXPECT_LT(ComputeAbsoluteErrors(a.trajectory, b.trajectory).aligned_rms_translation, 0.3);
 }
 

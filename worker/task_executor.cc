@@ -8,6 +8,7 @@
 #include "common/service/job_inputs.h"
 #include "common/slam/rss_slam.h"
 #include "common/slam/slam_params.h"
+#include "common/slam/slam_proto.h"
 #include "common/util/error.h"
 
 namespace evoslam {
@@ -63,10 +64,10 @@ void Remember(std::list<std::pair<std::string, std::shared_ptr<const T>>>& list,
 // Its members refer to one another: it is built in place and never moved.
 struct GlobalSearchOnBase {
   GlobalSearchOnBase(const Dataset& dataset, const proto::ProblemSpec& spec)
-      : params(RssSlamParamsFromProto(spec.slam())),
+      : params(CompleteSlamParams(spec.slam()).rss()),
         task(GlobalSearchTaskFromProto(spec.global_search(), poses)),
-        base(BaseMapFor(dataset, poses, task.first, task.last, params.local)),
-        problem(MakeGlobalSearchProblem(dataset, task, params, base)) {}
+        base(BaseMapFor(dataset, poses, task.first, task.last, params)),
+        problem(MakeGlobalSearchProblem(dataset, task, params.global(), base)) {}
   GlobalSearchOnBase(const GlobalSearchOnBase&) = delete;
   GlobalSearchOnBase& operator=(const GlobalSearchOnBase&) = delete;
 

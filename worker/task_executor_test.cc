@@ -17,6 +17,7 @@
 #include "common/sim/world.h"
 #include "common/slam/rss_slam.h"
 #include "common/slam/slam_params.h"
+#include "common/slam/slam_proto.h"
 #include "common/util/sha256.h"
 #include "common/util/temp_dir.h"
 
@@ -42,7 +43,7 @@ class SlamTaskTest : public ::testing::Test {
     files_->Put(log_, bytes.str());
     dataset_ = ReadCarmen(dir_ / "drive.clf");
     for (std::size_t i = 0; i < 60; ++i) poses_.push_back(dataset_.scans[i].odometry);
-    slam_.set_partitions(4);
+    slam_.mutable_rss()->mutable_global()->set_partitions(4);
   }
 
   // The periodic global search over scans [first, 60) of the odometry.
@@ -52,7 +53,7 @@ class SlamTaskTest : public ::testing::Test {
     task.first = first;
     task.last = poses_.size();
     task.poses = poses_;
-    task.max_error = RssSlamParamsFromProto(slam_).refine_error;
+    task.max_error = RefineBounds(slam_.rss().global());
     return task;
   }
 
@@ -71,7 +72,7 @@ class SlamTaskTest : public ::testing::Test {
     return task;
   }
 
-  static Island FreshIsland(const RssSlamParams& params) {
+  static Island FreshIsland(const GlobalSearchParams& params) {
     StopCriteria stop;
     stop.max_generations = 10;
     return Island(GlobalIslandModel(params).algorithm, stop, Rng(7));
@@ -86,11 +87,12 @@ class SlamTaskTest : public ::testing::Test {
 };
 
 TEST_F(SlamTaskTest, AnIslandEvolvesOnTheWorkerAsItDoesOnTheCoordinatorsProblem) {
-  const RssSlamParams params = RssSlamParamsFromProto(slam_);
+  const RssSlamParams params = CompleteSlamParams(slam_).rss();
   const GlobalSearchTask search = Task(20);
-  const HitCountGrid base = BaseMapFor(dataset_, poses_, search.first, search.last, params.local);
-  const GlobalSearchProblem problem = MakeGlobalSearchProblem(dataset_, search, params, base);
-  Island here = FreshIsland(params);
+  const HitCountGrid base = BaseMapFor(dataset_, poses_, search.first, search.last, params);
+  const GlobalSearchProblem problem =
+      MakeGlobalSearchProblem(dataset_, search, params.global(), base);
+  Island here = FreshIsland(params.global());
   const proto::Task task = EvolveTask(search, here, 4);
   here.Start(problem);
   here.Evolve(problem, 4);
@@ -130,7 +132,7 @@ TEST_F(SlamTaskTest, ATaskThatDoesNotFitItsLogComesBackAsAnError) {
   };
   TaskExecutor executor(files_);
   for (const auto& [change, says] : cases) {
-    proto::Task task = EvolveTask(Task(20), FreshIsland(RssSlamParamsFromProto(slam_)), 1);
+    proto::Task task = EvolveTask(Task(20), FreshIsland(slam_.rss().global()), 1);
     change(*task.mutable_problem());
     const proto::TaskResult r = executor.Run(task);
     ASSERT_TRUE(r.has_error()) << says;

@@ -87,7 +87,7 @@ std::vector<proto::ResultFile> SlamOutputs(const Dataset& dataset, const proto::
   const TempDir dir("evoslam-outputs");
   WriteTrajectoryText(result.trajectory, dir / "trajectory.txt");
   WriteTrajectoryTum(result.trajectory, dir / "trajectory.tum");
-  OccupancyGrid grid = GridAtPoses(dataset, result.trajectory, params.resolution_m());
+  OccupancyGrid grid = GridAtPoses(dataset, result.trajectory, params.rss().map().cell_size_m());
   report.set_map_resolution_m(grid.resolution());
   WriteMapYaml(grid, dir / "map.yaml");
   WriteGridPng(grid, dir / "map.png");

@@ -41,15 +41,15 @@ proto::SlamParams Params() {
   p.set_method("rss");
   p.set_log("office-boxes.clf");
   p.set_seed(7);
-  p.set_local_fitness("eval1");
-  p.set_local_particles(10);
-  p.set_local_iterations(30);
-  p.set_resolution_m(0.05);
-  p.set_global_every(300);
-  p.set_partitions(8);
-  p.set_islands(2);
-  p.set_preset("mu+lambda-002");
-  p.set_generations(100);
+  SetSlamParam(p, "local.fitness", "eval1");
+  SetSlamParam(p, "local.particles", "10");
+  SetSlamParam(p, "local.iterations", "30");
+  SetSlamParam(p, "map.cell_size_m", "0.05");
+  SetSlamParam(p, "global.every_scans", "300");
+  SetSlamParam(p, "global.partitions", "8");
+  SetSlamParam(p, "global.islands", "2");
+  SetSlamParam(p, "global.preset", "mu+lambda-002");
+  SetSlamParam(p, "global.generations", "100");
   return p;
 }
 
@@ -59,7 +59,7 @@ RssSlamResult ResultAtTruth(const Dataset& log, const Eigen::Vector2d& offset = 
   RssSlamResult r{.trajectory = {},
                   .loops = {},
                   .global_searches = {},
-                  .map = EmptyMapFor(log, LocalSearchParams{}),
+                  .map = EmptyMapFor(log, proto::RssMap{}, LocalSearchParams{}),
                   .times = {},
                   .odometry_stalls = {}};
   for (const LaserScan& s : log.scans) {
@@ -211,8 +211,8 @@ TEST_F(SlamOutputsTest, ReportJsonHoldsTheRunAndItsErrors) {
   // Every setting as it ran: those given, and the defaults of the rest.
   EXPECT_EQ(r.params().SerializeAsString(), CompleteSlamParams(Params()).SerializeAsString());
   EXPECT_EQ(r.params().seed(), 7u);
-  EXPECT_EQ(r.params().partitions(), 8u);
-  EXPECT_TRUE(r.params().has_min_match_score());
+  EXPECT_EQ(r.params().rss().global().partitions(), 8u);
+  EXPECT_TRUE(r.params().rss().loops().has_min_match_score());
   EXPECT_EQ(r.scans(), kScans);
   EXPECT_EQ(r.local_evaluations(), 9000u);
   EXPECT_EQ(r.global_evaluations(), 700u);
@@ -348,7 +348,7 @@ TEST_F(SlamOutputsTest, TheReportAndSummaryNameWhereTheOdometryStalled) {
 
 TEST_F(SlamOutputsTest, SummarySaysWhenTheSeenSpacesEdgeIsLeftFree) {
   proto::SlamParams params = Params();
-  params.set_local_free_frontier(true);
+  params.mutable_rss()->mutable_local()->set_free_frontier(true);
   const std::string s =
       Write(SlamOutputs(log_, params, result_, std::nullopt, 2)).at("summary.txt");
   EXPECT_NE(s.find("odometry where the scan fixes nothing, the seen space's edge free, refined "

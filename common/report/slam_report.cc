@@ -89,29 +89,29 @@ proto::SlamReport MakeSlamReport(const Dataset& dataset, const proto::SlamParams
 
 namespace {
 
-void PrintSearches(std::ostream& s, const proto::SlamParams& p) {
-  s << "  local search: PSO of " << p.local_particles() << " particles x " << p.local_iterations()
-    << " iterations on " << p.local_fitness() << ", map cells " << p.resolution_m() << " m, "
-    << (p.local_odometry_pull() > 0 ? "ties to odometry, " : "")
-    << (p.local_hedged_shift_rad() > 0 ? "a second swarm at odometry's heading, " : "")
-    << (p.local_min_constraint_ratio() > 0 ? "odometry where the scan fixes nothing, " : "")
-    << (p.local_odometry_weight() > 0
-            ? "odometry weighted " + FormatShortest(p.local_odometry_weight()) + ", "
-            : "")
-    << (p.local_free_frontier() ? "the seen space's edge free, " : "")
-    << (p.local_refine_iterations() > 0 ? "refined below a cell" : "not refined") << "\n";
+void PrintSearches(std::ostream& s, const proto::SlamParams& params) {
+  const proto::RssLocalSearch& l = params.rss().local();
+  s << "  local search: PSO of " << l.particles() << " particles x " << l.iterations()
+    << " iterations on " << l.fitness() << ", map cells " << params.rss().map().cell_size_m()
+    << " m, " << (l.odometry_tie_pull() > 0 ? "ties to odometry, " : "")
+    << (l.second_swarm_above_rad() > 0 ? "a second swarm at odometry's heading, " : "")
+    << (l.odometry_below_information() > 0 ? "odometry where the scan fixes nothing, " : "")
+    << (l.odometry_weight() > 0 ? "odometry weighted " + FormatShortest(l.odometry_weight()) + ", "
+                                : "")
+    << (l.free_frontier() ? "the seen space's edge free, " : "")
+    << (l.refine().iterations() > 0 ? "refined below a cell" : "not refined") << "\n";
   s << "  global search: ";
-  if (p.local_only()) {
+  const proto::RssGlobalSearch& g = params.rss().global();
+  if (!g.enabled()) {
     s << "off\n";
     return;
   }
-  s << (p.global_every() > 0 ? "on a loop or every " + std::to_string(p.global_every()) + " steps"
-                             : std::string("on a loop"))
-    << ", " << p.partitions() << " partitions, "
-    << (p.global_beam_stride() > 1
-            ? "1 return in " + std::to_string(p.global_beam_stride()) + " scored"
-            : std::string("all returns scored"))
-    << ", " << p.islands() << " islands of " << p.preset() << " x " << p.generations()
+  s << (g.every_scans() > 0 ? "on a loop or every " + std::to_string(g.every_scans()) + " steps"
+                            : std::string("on a loop"))
+    << ", " << g.partitions() << " partitions, "
+    << (g.beam_stride() > 1 ? "1 return in " + std::to_string(g.beam_stride()) + " scored"
+                            : std::string("all returns scored"))
+    << ", " << g.islands() << " islands of " << g.preset() << " x " << g.generations()
     << " generations\n";
 }
 
@@ -147,8 +147,9 @@ std::string FormatSlamSummary(const proto::SlamReport& r) {
     << " global\n";
   s << FormatOdometryStalls(r.odometry_stalls());
   PrintLoops(s, r);
-  if (r.map_resolution_m() > p.resolution_m()) {
-    s << "  map written at " << r.map_resolution_m() << " m per cell, not " << p.resolution_m()
+  if (r.map_resolution_m() > p.rss().map().cell_size_m()) {
+    s << "  map written at " << r.map_resolution_m() << " m per cell, not "
+      << p.rss().map().cell_size_m()
       << ": the run's extent does not fit a map that fine\n";
   }
   if (r.has_absolute_errors()) {

@@ -8,7 +8,7 @@
 #include "common/report/localize_report.h"
 #include "common/sensor/dataset.h"
 #include "common/slam/rss_slam.h"
-#include "common/slam/slam_params.h"
+#include "common/slam/slam_proto.h"
 #include "evoslam/slam.pb.h"
 
 namespace evoslam {

@@ -16,32 +16,49 @@ constexpr std::size_t kGenesPerColumn = 6;  // (error, mean) for x, y and theta
 
 }  // namespace
 
-void ValidateGlobalSearchParams(const GlobalSearchParams& p) {
-  if (p.partitions == 0 || p.partitions > kMaxPartitions)
-    throw Error("global search: the partitions must number from 1 to " +
-                std::to_string(kMaxPartitions));
-  if (!(p.max_error.array() >= 0.0).all() || !p.max_error.allFinite())
-    throw Error("global search: the maximum partition error must be finite and not negative");
-  if (!(p.sigma.array() > 0.0).all() || !p.sigma.allFinite())
-    throw Error("global search: the Gaussian widths must be positive");
-  if (!(p.w1 >= 0.0) || !(p.w2 >= 0.0)) throw Error("global search: weights must be >= 0");
-  if (p.beam_stride == 0) throw Error("global search: the beam stride must be >= 1");
+Eigen::Vector3d PartitionErrorBounds(const GlobalSearchParams& params) {
+  return {params.max_error_x_m(), params.max_error_y_m(), params.max_error_theta_rad()};
 }
 
-double WeightedLength(const Eigen::Vector2d& miss, double heading, const Eigen::Matrix2d& weight) {
-  if (weight.isIdentity(0.0)) return miss.norm();
-  const Eigen::Vector2d local = Eigen::Rotation2Dd(-heading) * miss;
-  return std::sqrt(std::max(0.0, local.dot(weight * local)));
+Eigen::Vector3d RefineBounds(const GlobalSearchParams& params) {
+  return {params.refine_bound_x_m(), params.refine_bound_y_m(), params.refine_bound_theta_rad()};
+}
+
+Eigen::Vector3d GaussianWidths(const GlobalSearchParams& params) {
+  return {params.spread_x(), params.spread_y(), params.spread_theta()};
+}
+
+void ValidateGlobalSearchParams(const GlobalSearchParams& p) {
+  if (p.partitions() == 0 || p.partitions() > kMaxPartitions)
+    throw Error("global.partitions: from 1 to " + std::to_string(kMaxPartitions));
+  const Eigen::Vector3d bounds = PartitionErrorBounds(p);
+  if (!(bounds.array() >= 0.0).all() || !bounds.allFinite())
+    throw Error("global.max_error_*: must be finite and not negative");
+  const Eigen::Vector3d widths = GaussianWidths(p);
+  if (!(widths.array() > 0.0).all() || !widths.allFinite())
+    throw Error("global.spread_*: must be finite and positive");
+  if (!(p.occupied_pose_weight() >= 0.0) || !(p.loop_miss_weight() >= 0.0) ||
+      !std::isfinite(p.occupied_pose_weight()) || !std::isfinite(p.loop_miss_weight()))
+    throw Error("global.occupied_pose_weight and global.loop_miss_weight: must be finite, >= 0");
+  if (p.beam_stride() == 0) throw Error("global.beam_stride: must be >= 1");
 }
 
 GlobalSearchProblem::GlobalSearchProblem(std::span<const LaserScan> scans,
                                          std::span<const Pose2> poses, std::size_t first,
                                          std::size_t last, const HitCountGrid& base,
                                          const GlobalSearchParams& params,
-                                         std::optional<LoopConstraint> loop,
-                                         std::span<const LoopConstraint> held)
-    : base_(base), params_(params), loop_(loop), first_(first), last_(last) {
+                                         const Eigen::Vector3d& max_error,
+                                         std::optional<LoopConstraint> loop)
+    : base_(base),
+      widths_(GaussianWidths(params)),
+      occupied_pose_weight_(params.occupied_pose_weight()),
+      loop_miss_weight_(params.loop_miss_weight()),
+      loop_(loop),
+      first_(first),
+      last_(last) {
   ValidateGlobalSearchParams(params);
+  if (!(max_error.array() >= 0.0).all() || !max_error.allFinite())
+    throw Error("global search: the partitions' error bounds must be finite and not negative");
   if (!(first < last) || last > scans.size() || last > poses.size()) {
     throw Error("global search: scans [" + std::to_string(first) + ", " + std::to_string(last) +
                 ") do not fit a log of " + std::to_string(scans.size()) + " scans and " +
@@ -52,27 +69,26 @@ GlobalSearchProblem::GlobalSearchProblem(std::span<const LaserScan> scans,
   for (std::size_t j = steps_begin_; j < last; ++j)
     increments_.emplace_back(poses[j - 1].inverse() * poses[j]);
   const std::size_t steps = increments_.size();
-  const std::size_t partitions = std::max<std::size_t>(1, std::min(params.partitions, steps));
+  const std::size_t partitions =
+      std::max<std::size_t>(1, std::min<std::size_t>(params.partitions(), steps));
   for (std::size_t i = 0; i <= partitions; ++i) bounds_.push_back(i * steps / partitions);
-  if (params.scored_scans > 0) {
-    scan_stride_ =
-        std::max<std::size_t>(1, (last - first + params.scored_scans - 1) / params.scored_scans);
+  if (const std::size_t scored = params.scored_scans(); scored > 0) {
+    scan_stride_ = std::max<std::size_t>(1, (last - first + scored - 1) / scored);
   }
   for (std::size_t k = first; k < last; k += scan_stride_) {
     const std::vector<Eigen::Vector2d> all = ReturnPoints(scans[k]);
     std::vector<Eigen::Vector2d>& used = returns_.emplace_back();
-    for (std::size_t i = 0; i < all.size(); i += params.beam_stride) used.push_back(all[i]);
+    for (std::size_t i = 0; i < all.size(); i += params.beam_stride()) used.push_back(all[i]);
   }
-  if (loop) observed_.push_back(Observe(scans, poses, *loop));
-  for (const LoopConstraint& h : held) observed_.push_back(Observe(scans, poses, h));
+  if (loop) observed_ = Observe(scans, poses, *loop);
   const auto n = static_cast<Eigen::Index>(partitions * kGenesPerColumn);
   lower_.resize(n);
   upper_.resize(n);
   for (std::size_t i = 0; i < partitions; ++i) {
     for (int axis = 0; axis < 3; ++axis) {
       const auto g = static_cast<Eigen::Index>(i * kGenesPerColumn + 2 * axis);
-      lower_(g) = -params.max_error(axis);
-      upper_(g) = params.max_error(axis);
+      lower_(g) = -max_error(axis);
+      upper_(g) = max_error(axis);
       lower_(g + 1) = 0.0;
       upper_(g + 1) = 1.0;
     }
@@ -88,13 +104,7 @@ Eigen::VectorXd GlobalSearchProblem::Identity() const {
 std::optional<Eigen::VectorXd> GlobalSearchProblem::ClosingCandidate() const {
   // A loop that starts inside the stretch bends with it; RunRssSlam's never does.
   if (!loop_ || loop_->earlier >= first_) return std::nullopt;
-  // The loops the candidate closes: the search's own, first, and the held loops whose earlier
-  // scan the stretch does not move.
-  std::vector<const Observation*> closed;
-  for (const Observation& o : observed_) {
-    if (o.constraint.earlier < first_) closed.push_back(&o);
-  }
-  const auto m = static_cast<Eigen::Index>(closed.size());
+  const Observation& o = *observed_;
   const std::size_t partitions = bounds_.size() - 1;
   const auto columns = static_cast<Eigen::Index>(partitions);
   Eigen::VectorXd x = Identity();
@@ -102,65 +112,41 @@ std::optional<Eigen::VectorXd> GlobalSearchProblem::ClosingCandidate() const {
     return static_cast<Eigen::Index>(partition * kGenesPerColumn + 2 * axis);
   };
   const auto clamp = [&](Eigen::Index g, double v) { return std::clamp(v, lower_(g), upper_(g)); };
-  const auto laters = [&](const Eigen::VectorXd& candidate) {
-    const std::vector<Pose2> poses = Apply(candidate);
-    std::vector<Pose2> at;
-    for (const Observation* o : closed) at.push_back(poses[o->constraint.later - first_]);
-    return at;
+  const auto later = [&](const Eigen::VectorXd& candidate) {
+    return Apply(candidate)[o.constraint.later - first_];
   };
-  std::vector<Pose2> expected;
-  for (const Observation* o : closed) expected.push_back(o->earlier_pose * o->constraint.relative);
-  // The heading errors add up along the path: a later heading moves by each partition's error
-  // times the share of its weight spent before the later scan. When the search's loop alone is
-  // closed and ends the stretch (as RunRssSlam's do) that is all of it, and the least-norm split
-  // is the even one.
-  const std::vector<Pose2> start = laters(x);
-  Eigen::VectorXd turn(m);
-  for (Eigen::Index k = 0; k < m; ++k) {
-    turn(k) = WrapAngle(expected[k].theta() - start[k].theta());
-  }
-  Eigen::MatrixXd turns = Eigen::MatrixXd::Ones(m, columns);
-  if (m > 1 || loop_->later + 1 < last_) {
+  const Pose2 expected = o.earlier_pose * o.constraint.relative;
+  // The heading errors add up along the path: the later heading moves by each partition's error
+  // times the share of its weight spent before the later scan. When the loop ends the stretch (as
+  // RunRssSlam's do) that is all of it, and the least-norm split is the even one.
+  const Pose2 start = later(x);
+  const double turn = WrapAngle(expected.theta() - start.theta());
+  Eigen::MatrixXd turns = Eigen::MatrixXd::Ones(1, columns);
+  if (loop_->later + 1 < last_) {
     for (std::size_t i = 0; i < partitions; ++i) {
       Eigen::VectorXd unit = x;
       unit(gene(i, 2)) += 1.0;
-      const std::vector<Pose2> turned = laters(unit);
-      for (Eigen::Index k = 0; k < m; ++k) {
-        turns(k, static_cast<Eigen::Index>(i)) = WrapAngle(turned[k].theta() - start[k].theta());
-      }
+      turns(0, static_cast<Eigen::Index>(i)) = WrapAngle(later(unit).theta() - start.theta());
     }
   }
-  if (m == 1) {
-    const double reach = turns.row(0).squaredNorm();
-    for (std::size_t i = 0; i < partitions && reach > 0; ++i) {
-      x(gene(i, 2)) = clamp(gene(i, 2), turn(0) * turns(0, static_cast<Eigen::Index>(i)) / reach);
-    }
-  } else {
-    const Eigen::VectorXd errors = turns.completeOrthogonalDecomposition().solve(turn);
-    for (std::size_t i = 0; i < partitions; ++i) {
-      x(gene(i, 2)) = clamp(gene(i, 2), errors(static_cast<Eigen::Index>(i)));
-    }
+  const double reach = turns.row(0).squaredNorm();
+  for (std::size_t i = 0; i < partitions && reach > 0; ++i) {
+    x(gene(i, 2)) = clamp(gene(i, 2), turn * turns(0, static_cast<Eigen::Index>(i)) / reach);
   }
-  // With the headings set, the later positions move linearly with the position errors: each
-  // partition's two columns of that map, then the least-norm (or, when the loops ask more than
-  // the partitions can give, least-squares) errors that make up the misses.
-  const std::vector<Pose2> at = laters(x);
-  Eigen::MatrixXd moves(2 * m, 2 * columns);
+  // With the heading set, the later position moves linearly with the position errors: each
+  // partition's two columns of that map, then the least-norm errors that make up the miss.
+  const Pose2 at = later(x);
+  Eigen::MatrixXd moves(2, 2 * columns);
   for (std::size_t i = 0; i < partitions; ++i) {
     for (int axis = 0; axis < 2; ++axis) {
       Eigen::VectorXd unit = x;
       unit(gene(i, axis)) += 1.0;
-      const std::vector<Pose2> moved = laters(unit);
-      for (Eigen::Index k = 0; k < m; ++k) {
-        moves.block<2, 1>(2 * k, static_cast<Eigen::Index>(2 * i) + axis) =
-            moved[k].translation() - at[k].translation();
-      }
+      moves.block<2, 1>(0, static_cast<Eigen::Index>(2 * i) + axis) =
+          later(unit).translation() - at.translation();
     }
   }
-  Eigen::VectorXd miss(2 * m);
-  for (Eigen::Index k = 0; k < m; ++k) {
-    miss.segment<2>(2 * k) = expected[k].translation() - at[k].translation();
-  }
+  Eigen::VectorXd miss(2);
+  miss.segment<2>(0) = expected.translation() - at.translation();
   const Eigen::VectorXd errors = moves.completeOrthogonalDecomposition().solve(miss);
   for (std::size_t i = 0; i < partitions; ++i) {
     for (int axis = 0; axis < 2; ++axis) {
@@ -208,7 +194,7 @@ void GlobalSearchProblem::Apply(const Eigen::Ref<const Eigen::VectorXd>& x,
     for (std::size_t j = b; j < e; ++j) {
       const double t = (static_cast<double>(j - b) + 0.5) / n;
       for (int axis = 0; axis < 3; ++axis) {
-        const double d = (t - gene(axis, 1)) / params_.sigma(axis);
+        const double d = (t - gene(axis, 1)) / widths_(axis);
         weights.push_back(std::exp(-0.5 * d * d));
         weight_sum(axis) += weights.back();
       }
@@ -244,9 +230,8 @@ void GlobalSearchProblem::Score(const Eigen::Ref<const Eigen::VectorXd>& x, Scra
     const auto c = base_.CellIndex(pose.pose().translation());
     if (c) conflicts += base_.occupied(*c) || cells.Contains(*c);
   }
-  double distance = 0.0;
-  for (const Observation& o : observed_) distance += Distance(o, poses);
-  fitness[1] = params_.w1 * conflicts + params_.w2 * distance;
+  const double distance = observed_ ? Distance(*observed_, poses) : 0.0;
+  fitness[1] = occupied_pose_weight_ * conflicts + loop_miss_weight_ * distance;
 }
 
 GlobalSearchProblem::Observation GlobalSearchProblem::Observe(std::span<const LaserScan> scans,
@@ -272,8 +257,7 @@ double GlobalSearchProblem::Distance(const Observation& o,
   const Pose2Frame& earlier = c.earlier < first_ ? o.earlier_pose : poses[c.earlier - first_];
   const Pose2 expected = earlier * c.relative;
   const Pose2& later = poses[c.later - first_].pose();
-  return std::hypot(WeightedLength(later.translation() - expected.translation(),
-                                   earlier.pose().theta(), c.weight),
+  return std::hypot((later.translation() - expected.translation()).norm(),
                     o.lever * WrapAngle(later.theta() - expected.theta()));
 }
 
@@ -309,9 +293,8 @@ std::optional<std::size_t> PickGlobalSolution(const Eigen::MatrixXd& fitness, do
 }
 
 bool WorthApplying(std::span<const double, 2> before, std::span<const double, 2> after,
-                   double min_eq6_gain, double min_eq7_gain) {
-  return after[0] < before[0] - min_eq6_gain * std::abs(before[0]) ||
-         after[1] < (1.0 - min_eq7_gain) * before[1];
+                   double min_eq6_gain) {
+  return after[0] < before[0] - min_eq6_gain * std::abs(before[0]) || after[1] < before[1];
 }
 
 }  // namespace evoslam

@@ -13,35 +13,23 @@
 #include "common/sensor/laser_scan.h"
 #include "common/transform/pose2.h"
 #include "common/transform/pose2_frame.h"
+#include "evoslam/slam_params.pb.h"
 
 namespace evoslam {
 
-// Paper 002's global search (§3.2) settings.
 // The most partitions a global search may have (the command line's flag takes the same bound).
 inline constexpr std::size_t kMaxPartitions = 100000;
 
-struct GlobalSearchParams {
-  std::size_t partitions = 8;  // L
-  // Bounds of a partition's total error per axis (m, m, rad).
-  Eigen::Vector3d max_error{1.0, 1.0, 0.3};
-  // The Gaussian of eq. 5 per axis, as a fraction of a partition's length.
-  Eigen::Vector3d sigma{0.3, 0.3, 0.3};
-  // Eq. 7: weight of each corrected pose that stands on an occupied cell (002 Fig. 11: 0.5). The
-  // term is a count and the loop's a length: w1 / w2 is the metres of loop miss one such pose is
-  // worth, a metre with 002's weights (docs/accuracy-history.md has smaller ones measured).
-  double w1 = 0.5;
-  // Eq. 7: weight of the distance between two observations of one place: how far the loop's
-  // later scan lands from where the match puts it, its heading's miss counted by how far it
-  // moves the scan's returns (docs/rss_slam.md).
-  double w2 = 0.5;
-  // Eq. 6 counts every this-many-th return of each scan of the stretch. Neighbouring scans see
-  // the same walls, so half the returns still draw them, at 0.6 of the cost (docs/rss_slam.md).
-  std::size_t beam_stride = 2;
-  // Eq. 6 re-inserts at most this many scans of the stretch, evenly spaced (0: every scan), so
-  // that a search over a whole loop of thousands of steps costs what one over a few hundred
-  // does; the poses of every step still count in eq. 7 (docs/rss_slam.md).
-  std::size_t scored_scans = 300;
-};
+// Paper 002's global search (§3.2); what each parameter does is in
+// proto/evoslam/slam_params.proto and docs/methods/rss.md.
+using GlobalSearchParams = proto::RssGlobalSearch;
+
+// Bounds of a partition's total error per axis (m, m, rad), and eq. 5's Gaussian widths per axis
+// as shares of a partition's length.
+Eigen::Vector3d PartitionErrorBounds(const GlobalSearchParams& params);
+Eigen::Vector3d GaussianWidths(const GlobalSearchParams& params);
+// The bounds of a search without a loop (m, m, rad), which a loop's search adds to its own.
+Eigen::Vector3d RefineBounds(const GlobalSearchParams& params);
 
 void ValidateGlobalSearchParams(const GlobalSearchParams& params);
 
@@ -50,17 +38,7 @@ struct LoopConstraint {
   std::size_t earlier = 0;
   std::size_t later = 0;
   Pose2 relative;
-  // Eq. 7 measures how far `later` lands from there, d in `earlier`'s frame, as sqrt(d' W d).
-  // W's largest eigenvalue is 1: the identity gives 002's distance, and a match that only pins
-  // the place across a corridor gives a W that barely counts a miss along it.
-  Eigen::Matrix2d weight = Eigen::Matrix2d::Identity();
 };
-
-// How long a loop's `weight` finds a miss d (world frame) in the frame of a pose at `heading`:
-// sqrt(d' W d), d turned into that frame. The identity gives d's plain length, computed as such,
-// so that 002's distance comes out the same bits. Eq. 7 and the loop detector's fit test both
-// measure a loop's miss with it.
-double WeightedLength(const Eigen::Vector2d& miss, double heading, const Eigen::Matrix2d& weight);
 
 // The global search's problem over the poses of scans [first, last). The steps between them
 // are split into L partitions; a candidate holds per partition and axis an error and the mean of
@@ -71,17 +49,17 @@ double WeightedLength(const Eigen::Vector2d& miss, double heading, const Eigen::
 // scored_scans evenly spaced scans of [first, last) re-inserted at their corrected poses into
 // `base`, which holds every scan outside the stretch), and eq. 7 negated (w1 x the corrected
 // poses that stand on an occupied cell + w2 x how far the loop's later pose lands from where the
-// constraint puts it, as its weight measures it, and how far its returns turn from where it puts
-// them, summed over the loop and the `held` loops, those found before whose later scan lies in
-// [first, last); no constraint, no second term).
+// constraint puts it and how far its returns turn from where it puts them; no loop, no second
+// term).
 class GlobalSearchProblem : public Problem {
  public:
   // `poses` holds the current poses of scans [0, last). The pose of scan max(first, 1) - 1 is
-  // the anchor the corrected steps start from.
+  // the anchor the corrected steps start from. `max_error` bounds each partition's error (m, m,
+  // rad).
   GlobalSearchProblem(std::span<const LaserScan> scans, std::span<const Pose2> poses,
                       std::size_t first, std::size_t last, const HitCountGrid& base,
-                      const GlobalSearchParams& params, std::optional<LoopConstraint> loop,
-                      std::span<const LoopConstraint> held = {});
+                      const GlobalSearchParams& params, const Eigen::Vector3d& max_error,
+                      std::optional<LoopConstraint> loop);
 
   const Eigen::VectorXd& lower() const override { return lower_; }
   const Eigen::VectorXd& upper() const override { return upper_; }
@@ -126,10 +104,10 @@ class GlobalSearchProblem : public Problem {
   double Distance(const Observation& o, std::span<const Pose2Frame> poses) const;
 
   const HitCountGrid& base_;
-  GlobalSearchParams params_;
+  Eigen::Vector3d widths_;  // eq. 5's, per axis
+  double occupied_pose_weight_, loop_miss_weight_;
   std::optional<LoopConstraint> loop_;
-  // The loop's observation first, then those of the held loops.
-  std::vector<Observation> observed_;
+  std::optional<Observation> observed_;  // the loop's
   std::size_t first_, last_;
   std::size_t scan_stride_ = 1;         // eq. 6 re-inserts scans first, first + stride, ...
   std::size_t steps_begin_;             // the first corrected step
@@ -150,10 +128,9 @@ std::optional<std::size_t> PickGlobalSolution(
 
 // Whether a picked correction scoring `after` (eq. 6, eq. 7 negated, as minimised) is worth
 // applying to a stretch scoring `before`: it sharpens the map (eq. 6) by more than the fraction
-// `min_eq6_gain` of its score, or it lowers eq. 7 by more than the fraction `min_eq7_gain` of
-// what it was.
+// `min_eq6_gain` of its score, or it lowers eq. 7.
 bool WorthApplying(std::span<const double, 2> before, std::span<const double, 2> after,
-                   double min_eq6_gain, double min_eq7_gain);
+                   double min_eq6_gain);
 
 }  // namespace evoslam
 

@@ -22,7 +22,7 @@ constexpr std::uint64_t kHedgeStream = 1000;
 // The second swarm's pose is kept only when eq. 1 counts fewer cells for it than for the first
 // swarm's by more than this share of the scan's beams: two poses refined below a cell differ by a
 // cell or two by chance, and taking those let the local search alone slip on more Intel seeds
-// (docs/rss_slam-history.md).
+// (docs/methods/rss.md).
 constexpr double kHedgeWinShare = 0.02;
 
 // Whether a correction lies within 5 % of the cube's face on some axis, where the step's error
@@ -38,44 +38,43 @@ bool OnFace(const Eigen::VectorXd& error, const Eigen::Vector3d& max_error) {
 }  // namespace
 
 void ValidateLocalSearchParams(const LocalSearchParams& p) {
-  if (!(p.max_error.array() >= 0.0).all() || !p.max_error.allFinite())
-    throw Error("local search: the maximum step error must be finite and not negative");
-  if (p.particles < 2 || p.particles > kMaxLocalParticles)
-    throw Error("local search: the particles must number from 2 to " +
-                std::to_string(kMaxLocalParticles));
-  if (p.iterations == 0 || p.iterations > kMaxLocalIterations)
-    throw Error("local search: the iterations must number from 1 to " +
-                std::to_string(kMaxLocalIterations));
-  if (!IsFiniteNonNegative(p.turn_error_per_rad))
-    throw Error(
-        "local search: the heading error per radian turned must be finite and not negative");
-  if (!std::isfinite(p.carried_turn_shift))
-    throw Error("local search: the shift by the previous step's heading correction must be finite");
-  if (!IsFiniteNonNegative(p.hedged_shift))
-    throw Error("local search: the shift hedged by a second swarm must be finite and not negative");
-  if (!IsFiniteNonNegative(p.carried_turn_error))
-    throw Error(
-        "local search: the share of the previous step's heading correction must be finite and "
-        "not negative");
-  if (p.recentres > 100) throw Error("local search: at most 100 recentred searches per step");
-  if (!(p.resolution > 0.0)) throw Error("local search: the map resolution must be positive");
-  if (!(p.margin >= 0.0)) throw Error("local search: the map margin must not be negative");
-  if (!(p.odometry_pull >= 0.0 && p.odometry_pull < 1.0))
-    throw Error("local search: the odometry pull must be in [0, 1)");
-  if (!(p.min_constraint_ratio >= 0.0 && p.min_constraint_ratio < 1.0))
-    throw Error("local search: the minimum constraint ratio must be in [0, 1)");
-  if (!IsFiniteNonNegative(p.odometry_weight))
-    throw Error("local search: the odometry weight must be finite and not negative");
-  if (!std::isfinite(p.frontier_margin))
-    throw Error("local search: the frontier margin must be finite");
-  ValidateScanRefinementParams(p.refine);
+  if (!(BaseErrorCube(p).array() >= 0.0).all() || !BaseErrorCube(p).allFinite())
+    throw Error("local.max_error_*: the step's error cube must be finite and not negative");
+  if (p.particles() < 2 || p.particles() > kMaxLocalParticles)
+    throw Error("local.particles: from 2 to " + std::to_string(kMaxLocalParticles));
+  if (p.iterations() == 0 || p.iterations() > kMaxLocalIterations)
+    throw Error("local.iterations: from 1 to " + std::to_string(kMaxLocalIterations));
+  ParseLocalFitness(p.fitness());
+  if (!IsFiniteNonNegative(p.heading_range_per_turn()))
+    throw Error("local.heading_range_per_turn: must be finite and not negative");
+  if (!std::isfinite(p.heading_shift_per_correction()))
+    throw Error("local.heading_shift_per_correction: must be finite");
+  if (!IsFiniteNonNegative(p.second_swarm_above_rad()))
+    throw Error("local.second_swarm_above_rad: must be finite and not negative");
+  if (!IsFiniteNonNegative(p.heading_range_per_correction()))
+    throw Error("local.heading_range_per_correction: must be finite and not negative");
+  if (p.recentres() > 100) throw Error("local.recentres: at most 100");
+  if (!(p.odometry_tie_pull() >= 0.0 && p.odometry_tie_pull() < 1.0))
+    throw Error("local.odometry_tie_pull: must be in [0, 1)");
+  if (!(p.odometry_below_information() >= 0.0 && p.odometry_below_information() < 1.0))
+    throw Error("local.odometry_below_information: must be in [0, 1)");
+  if (!IsFiniteNonNegative(p.odometry_weight()))
+    throw Error("local.odometry_weight: must be finite and not negative");
+  if (!std::isfinite(p.reach_margin_m())) throw Error("local.reach_margin_m: must be finite");
+  if (!std::isfinite(p.inertia()) || !std::isfinite(p.cognitive()) || !std::isfinite(p.social()))
+    throw Error("local.inertia, local.cognitive and local.social: must be finite");
+  ValidateScanRefinementParams(p.refine());
+}
+
+Eigen::Vector3d BaseErrorCube(const LocalSearchParams& params) {
+  return {params.max_error_x_m(), params.max_error_y_m(), params.max_error_theta_rad()};
 }
 
 Eigen::Vector3d StepErrorCube(const LocalSearchParams& params, const Pose2& odometry_step,
                               double previous_turn_correction) {
-  Eigen::Vector3d cube = params.max_error;
-  cube.z() += params.turn_error_per_rad * std::abs(odometry_step.theta()) +
-              params.carried_turn_error * std::abs(previous_turn_correction);
+  Eigen::Vector3d cube = BaseErrorCube(params);
+  cube.z() += params.heading_range_per_turn() * std::abs(odometry_step.theta()) +
+              params.heading_range_per_correction() * std::abs(previous_turn_correction);
   return cube;
 }
 
@@ -97,7 +96,10 @@ void CheckOdometrySteps(const Dataset& dataset) {
   }
 }
 
-HitCountGrid EmptyMapFor(const Dataset& dataset, const LocalSearchParams& params) {
+HitCountGrid EmptyMapFor(const Dataset& dataset, const proto::RssMap& params,
+                         const LocalSearchParams& local) {
+  if (!(params.cell_size_m() > 0.0)) throw Error("map.cell_size_m: must be positive");
+  if (!(params.margin_m() >= 0.0)) throw Error("map.margin_m: must not be negative");
   if (dataset.scans.empty()) throw Error(dataset.source + ": the log has no laser scans");
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector2d hi = -lo;
@@ -107,38 +109,39 @@ HitCountGrid EmptyMapFor(const Dataset& dataset, const LocalSearchParams& params
     hi = hi.cwiseMax(s.odometry.translation());
     reach = std::max(reach, s.range_max);
   }
-  const double pad = reach + params.margin;
+  const double pad = reach + params.margin_m();
   const Eigen::Vector2d origin = lo.array() - pad;
   const Eigen::Vector2d size = (hi - lo).array() + 2 * pad;
   // Counted in doubles, so that a path of 1e300 m is refused rather than overflowing the count.
-  const Eigen::Vector2d cells = (size / params.resolution).array().ceil() + 1.0;
+  const Eigen::Vector2d cells = (size / params.cell_size_m()).array().ceil() + 1.0;
   if (!(cells.x() * cells.y() <= static_cast<double>(HitCountGrid::kMaxCells))) {
     std::ostringstream os;
     os << dataset.source << ": the odometry's path and the laser's reach span " << size.x() << " x "
        << size.y() << " m, more than the " << HitCountGrid::kMaxCells << " cells of "
-       << params.resolution << " m the search's map holds; map at a coarser resolution";
+       << params.cell_size_m() << " m the search's map holds; map at a coarser resolution";
     throw Error(os.str());
   }
-  HitCountGrid map(params.resolution, origin, static_cast<int>(cells.x()),
+  HitCountGrid map(params.cell_size_m(), origin, static_cast<int>(cells.x()),
                    static_cast<int>(cells.y()));
-  if (params.free_frontier) map.TrackRays();
+  if (local.free_frontier()) map.TrackRays();
   return map;
 }
 
 StepCorrection CorrectStep(const HitCountGrid& map, const LaserScan& scan, const Pose2& predicted,
-                           const LocalSearchParams& params, Rng rng) {
+                           const Eigen::Vector3d& cube, const LocalSearchParams& params, Rng rng) {
   PsoParams pso;
-  pso.particles = params.particles;
-  pso.inertia = params.inertia;
-  pso.c1 = params.c1;
-  pso.c2 = params.c2;
+  pso.particles = params.particles();
+  pso.inertia = params.inertia();
+  pso.c1 = params.cognitive();
+  pso.c2 = params.social();
   StopCriteria stop;
-  stop.max_generations = params.iterations;
+  stop.max_generations = params.iterations();
+  const LocalFitness fitness = ParseLocalFitness(params.fitness());
   StepCorrection result{predicted, 0};
   double best = std::numeric_limits<double>::infinity();
-  for (std::size_t round = 0; round <= params.recentres; ++round) {
-    const StepCorrectionProblem problem(map, scan, result.pose, params.max_error, params.fitness,
-                                        params.odometry_pull, params.free_frontier);
+  for (std::size_t round = 0; round <= params.recentres(); ++round) {
+    const StepCorrectionProblem problem(map, scan, result.pose, cube, fitness,
+                                        params.odometry_tie_pull(), params.free_frontier());
     ParticleSwarm swarm(pso);
     Rng stream = round == 0 ? rng : rng.Stream(round);
     const OptimResult r = Minimize(problem, swarm, stop, stream);
@@ -146,14 +149,14 @@ StepCorrection CorrectStep(const HitCountGrid& map, const LaserScan& scan, const
     if (!(r.best_fitness < best)) break;  // the recentred cube found nothing better
     best = r.best_fitness;
     result.pose = problem.Corrected(r.best);
-    if (!OnFace(r.best, params.max_error)) break;
+    if (!OnFace(r.best, cube)) break;
   }
-  if (params.refine.iterations == 0 && params.min_constraint_ratio == 0.0 &&
-      params.odometry_weight == 0.0) {
+  if (params.refine().iterations() == 0 && params.odometry_below_information() == 0.0 &&
+      params.odometry_weight() == 0.0) {
     return result;
   }
   std::vector<Eigen::Vector2d> returns = ReturnPoints(scan);
-  if (params.free_frontier) {
+  if (params.free_frontier()) {
     // The interpolated occupancy slopes from a mapped wall's end into the edge beyond it, so a
     // return there would pull the refinement, and read as information, as it pulled eq. 1.
     const Pose2Frame frame(result.pose);
@@ -163,13 +166,14 @@ StepCorrection CorrectStep(const HitCountGrid& map, const LaserScan& scan, const
     });
   }
   RefinedPose refined{result.pose};
-  if (params.refine.iterations > 0) {
-    refined = RefineScanPose(map, returns, result.pose, params.refine);
+  if (params.refine().iterations() > 0) {
+    refined = RefineScanPose(map, returns, result.pose, params.refine());
   } else {
-    refined.information = ScanInformation(map, returns, result.pose, params.refine.wall_share);
+    refined.information = ScanInformation(map, returns, result.pose, params.refine().wall_share());
   }
-  result.pose = KeepPriorWhereUnconstrained(refined.information, returns, refined.pose, predicted,
-                                            params.min_constraint_ratio, params.odometry_weight);
+  result.pose =
+      KeepPriorWhereUnconstrained(refined.information, returns, refined.pose, predicted,
+                                  params.odometry_below_information(), params.odometry_weight());
   return result;
 }
 
@@ -207,22 +211,22 @@ StepCorrection CorrectLogStep(const HitCountGrid& map, const Dataset& dataset,
     const Pose2 taken_before = poses[i - 2].inverse() * previous_pose;
     previous_turn_correction = (odometry_before.inverse() * taken_before).theta();
   }
-  const double shift = -params.carried_turn_shift * previous_turn_correction;
+  const double shift = -params.heading_shift_per_correction() * previous_turn_correction;
   const Pose2 predicted = previous_pose * step * Pose2(0.0, 0.0, shift);
-  LocalSearchParams for_step = params;
-  for_step.max_error = StepErrorCube(params, step, previous_turn_correction);
+  const Eigen::Vector3d cube = StepErrorCube(params, step, previous_turn_correction);
   const LaserScan scored =
-      WithinPreviousReach(scan, predicted, previous, previous_pose, params.frontier_margin);
-  const StepCorrection shifted = CorrectStep(map, scored, predicted, for_step, rng);
-  if (params.hedged_shift == 0.0 || !(std::abs(shift) > params.hedged_shift)) return shifted;
+      WithinPreviousReach(scan, predicted, previous, previous_pose, params.reach_margin_m());
+  const StepCorrection shifted = CorrectStep(map, scored, predicted, cube, params, rng);
+  const double hedge_above = params.second_swarm_above_rad();
+  if (hedge_above == 0.0 || !(std::abs(shift) > hedge_above)) return shifted;
   const Pose2 unshifted = previous_pose * step;
   const StepCorrection hedge =
-      CorrectStep(map, scored, unshifted, for_step, rng.Stream(kHedgeStream));
+      CorrectStep(map, scored, unshifted, cube, params, rng.Stream(kHedgeStream));
   // By eq. 1 whatever the search's fitness, since eq. 2 ranks alike and eq. 1's counts give the
   // margin a unit. The two counts differ only by the cells each pose's returns add, wherever they
   // land, so the judge's own window and cube do not matter.
-  const StepCorrectionProblem judge(map, scored, predicted, for_step.max_error,
-                                    LocalFitness::kEval1, 0.0, params.free_frontier);
+  const StepCorrectionProblem judge(map, scored, predicted, cube, LocalFitness::kEval1, 0.0,
+                                    params.free_frontier());
   const auto cells = [&](const Pose2& pose) {
     const Pose2 error = predicted.inverse() * pose;
     return judge.Score(Eigen::Vector3d(error.x(), error.y(), error.theta()));
@@ -270,7 +274,7 @@ LocalSearchResult RunLocalSearch(const Dataset& dataset, const LocalSearchParams
                                  const std::function<void(std::size_t, std::size_t)>& progress) {
   ValidateLocalSearchParams(params);
   if (dataset.scans.empty()) throw Error(dataset.source + ": the log has no laser scans");
-  const std::vector<OdometryStall> stalls = FindOdometryStalls(dataset.scans, params.max_error);
+  const std::vector<OdometryStall> stalls = FindOdometryStalls(dataset.scans, BaseErrorCube(params));
   return RunWithOdometryStallsFilled(dataset, stalls, [&](const Dataset& log) {
     return RunOverFilledLog(log, params, seed, map, progress);
   });

@@ -24,11 +24,11 @@ TEST(LocalSearchTest, TheSameSeedGivesTheSameTrajectory) {
   sim.max_scans = 20;
   const Dataset d = Simulate(BuiltinWorld("s-corridor"), sim);
   LocalSearchParams params;
-  HitCountGrid a = EmptyMapFor(d, params), b = EmptyMapFor(d, params);
+  HitCountGrid a = EmptyMapFor(d, {}, params), b = EmptyMapFor(d, {}, params);
   const auto ra = RunLocalSearch(d, params, 5, a), rb = RunLocalSearch(d, params, 5, b);
   for (std::size_t i = 0; i < ra.trajectory.size(); ++i)
     EXPECT_EQ(ra.trajectory[i].pose, rb.trajectory[i].pose);
-  params.particles = 1;
+  params.set_particles(1);
   EXPECT_THROW(RunLocalSearch(d, params, 5, a), Error);
 }
 
@@ -50,34 +50,37 @@ TEST(CorrectStepTest, RecentredSearchesReachAnErrorBeyondTheCube) {
   };
 
   LocalSearchParams params;
-  params.refine.iterations = 0;  // the PSO's pose, which the refinement would move on
-  params.recentres = 0;
-  const StepCorrection once = CorrectStep(map, scan, predicted, params, Rng(3));
+  params.mutable_refine()->set_iterations(0);  // the PSO's pose, which the refinement would move on
+  params.set_recentres(0);
+  const StepCorrection once = CorrectStep(map, scan, predicted, BaseErrorCube(params), params, Rng(3));
   EXPECT_GT(heading_error(once.pose), 0.025);
-  params.recentres = 2;
-  const StepCorrection recentred = CorrectStep(map, scan, predicted, params, Rng(3));
+  params.set_recentres(2);
+  const StepCorrection recentred = CorrectStep(map, scan, predicted, BaseErrorCube(params), params, Rng(3));
   EXPECT_LT(heading_error(recentred.pose), 0.01);
   EXPECT_LT(distance(recentred.pose), 0.06);
   EXPECT_GT(recentred.evaluations, once.evaluations);
   // Where the first cube holds the optimum, no second search runs.
   const StepCorrection near =
-      CorrectStep(map, scan, truth * Pose2(0.03, 0.02, 0.01), params, Rng(3));
+      CorrectStep(map, scan, truth * Pose2(0.03, 0.02, 0.01), BaseErrorCube(params), params,
+                  Rng(3));
   EXPECT_EQ(near.evaluations, once.evaluations);
   EXPECT_LT(heading_error(near.pose), 0.01);
 }
 
 TEST(StepErrorCubeTest, TheHeadingRangeGrowsWithTheTurnOdometryReports) {
   LocalSearchParams params;
-  params.max_error = Eigen::Vector3d(0.1, 0.08, 0.05);
-  params.turn_error_per_rad = 0.5;
-  params.carried_turn_error = 0.25;
-  EXPECT_EQ(StepErrorCube(params, Pose2(0.3, 0.0, 0.0), 0.0), params.max_error);
+  params.set_max_error_y_m(0.08);
+  params.set_heading_range_per_turn(0.5);
+  params.set_heading_range_per_correction(0.25);
+  const Eigen::Vector3d base(0.1, 0.08, 0.05);
+  EXPECT_EQ(BaseErrorCube(params), base);
+  EXPECT_EQ(StepErrorCube(params, Pose2(0.3, 0.0, 0.0), 0.0), base);
   const Eigen::Vector3d turning = StepErrorCube(params, Pose2(0.1, 0.0, -0.4), 0.0);
-  EXPECT_EQ(turning.head<2>(), params.max_error.head<2>());
+  EXPECT_EQ(turning.head<2>(), base.head<2>());
   EXPECT_DOUBLE_EQ(turning.z(), 0.05 + 0.5 * 0.4);
   // ...and with the heading correction the step before took, whichever its sign.
   const Eigen::Vector3d after_correction = StepErrorCube(params, Pose2(0.1, 0.0, -0.4), -0.2);
-  EXPECT_EQ(after_correction.head<2>(), params.max_error.head<2>());
+  EXPECT_EQ(after_correction.head<2>(), base.head<2>());
   EXPECT_DOUBLE_EQ(after_correction.z(), 0.05 + 0.5 * 0.4 + 0.25 * 0.2);
   EXPECT_EQ(StepErrorCube(params, Pose2(0.1, 0.0, -0.4), 0.2), after_correction);
 }
@@ -105,7 +108,7 @@ TEST(CorrectLogStepTest, AFastTurnsHeadingErrorIsFoundWhenTheCubeGrowsWithTheTur
   drive.scans[1].odometry = start * Pose2(0.05, 0.0, 0.9 + 0.25);
   const auto heading_error = [&](double per_rad) {
     LocalSearchParams params;
-    params.turn_error_per_rad = per_rad;
+    params.set_heading_range_per_turn(per_rad);
     const std::vector<Pose2> poses{start};
     const StepCorrection c = CorrectLogStep(map, drive, poses, params, Rng(4));
     return std::abs((truth.inverse() * c.pose).theta());
@@ -146,10 +149,10 @@ TEST(CorrectLogStepTest, AHeadingCorrectionTakenOneStepIsAllowedForInTheNext) {
   t.drive.scans[2].odometry = t.drive.scans[1].odometry * Pose2(0.05, 0.0, 0.3 - 0.2);
   const auto heading_error = [&](double carried, double shift) {
     LocalSearchParams params;  // the cube alone: 0.05 + 0.6 * 0.1 rad without the carry
-    params.recentres = 0;
-    params.refine.iterations = 0;
-    params.carried_turn_error = carried;
-    params.carried_turn_shift = shift;
+    params.set_recentres(0);
+    params.mutable_refine()->set_iterations(0);
+    params.set_heading_range_per_correction(carried);
+    params.set_heading_shift_per_correction(shift);
     const StepCorrection c = CorrectLogStep(t.map, t.drive, t.poses, params, Rng(4));
     return std::abs((t.second.inverse() * c.pose).theta());
   };
@@ -170,12 +173,12 @@ TEST(CorrectLogStepTest, ASecondSwarmAtOdometrysHeadingHedgesAShiftThatGuessesWr
   const auto heading_error = [&](double given_back, double hedged_shift) {
     t.drive.scans[2].odometry = t.drive.scans[1].odometry * Pose2(0.05, 0.0, 0.3 - given_back);
     LocalSearchParams params;
-    params.recentres = 0;
-    params.refine.iterations = 0;
-    params.turn_error_per_rad = 0.0;
-    params.carried_turn_error = 0.0;
-    params.carried_turn_shift = 1.0;
-    params.hedged_shift = hedged_shift;
+    params.set_recentres(0);
+    params.mutable_refine()->set_iterations(0);
+    params.set_heading_range_per_turn(0.0);
+    params.set_heading_range_per_correction(0.0);
+    params.set_heading_shift_per_correction(1.0);
+    params.set_second_swarm_above_rad(hedged_shift);
     const StepCorrection c = CorrectLogStep(t.map, t.drive, t.poses, params, Rng(4));
     return std::abs((t.second.inverse() * c.pose).theta());
   };
@@ -228,13 +231,13 @@ TEST(EmptyMapForTest, RefusesAMapOfMoreCellsThanTheGridHolds) {
   Dataset drive;
   drive.source = "drive.clf";
   drive.scans = {testing::ScanFrom(room, Pose2(2.8, 2.2, 0.0))};
-  LocalSearchParams params;
-  params.margin = 0.0;
-  params.resolution = 0.05;
-  EXPECT_EQ(EmptyMapFor(drive, params).width(), 321);  // 8 m either side, 5 cm cells
-  params.resolution = 1e-4;                            // 160,001^2 cells
+  proto::RssMap params;
+  params.set_margin_m(0.0);
+  params.set_cell_size_m(0.05);
+  EXPECT_EQ(EmptyMapFor(drive, params, {}).width(), 321);  // 8 m either side, 5 cm cells
+  params.set_cell_size_m(1e-4);                            // 160,001^2 cells
   try {
-    EmptyMapFor(drive, params);
+    EmptyMapFor(drive, params, {});
     ADD_FAILURE() << "a map of more than HitCountGrid::kMaxCells cells was made";
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), ::testing::HasSubstr("drive.clf"));
@@ -242,8 +245,8 @@ TEST(EmptyMapForTest, RefusesAMapOfMoreCellsThanTheGridHolds) {
   }
   drive.scans.push_back(drive.scans[0]);
   drive.scans[1].odometry = Pose2(1e300, 0.0, 0.0);  // would overflow an int count
-  params.resolution = 0.05;
-  EXPECT_THROW(EmptyMapFor(drive, params), Error);
+  params.set_cell_size_m(0.05);
+  EXPECT_THROW(EmptyMapFor(drive, params, {}), Error);
 }
 
 // Down a hall longer than the laser's reach every scan sees its walls a step farther on. The end
@@ -266,29 +269,29 @@ TEST(LocalSearchTest, DownAHallLongerThanTheLasersReachTheFrontierDoesNotPullThe
     scan.odometry = pose;
     drive.scans.push_back(std::move(scan));
   }
-  const auto shortfall = [&](double margin, double pull = LocalSearchParams{}.odometry_pull) {
+  const auto shortfall = [&](double margin, double pull = LocalSearchParams{}.odometry_tie_pull()) {
     LocalSearchParams params;
-    params.frontier_margin = margin;
-    params.odometry_pull = pull;
+    params.set_reach_margin_m(margin);
+    params.set_odometry_tie_pull(pull);
     // The score's pull alone: the refinement, drawn to the wall's mapped end, adds its own (with 5
     // cm cells, 5.1 against 3.3 m short with every return scored).
-    params.refine.iterations = 0;
+    params.mutable_refine()->set_iterations(0);
     // Ties go to the heading range's centre, which the carried-turn shift moves off odometry; on
     // this flat score the heading then wanders a little, and the pull is measured against
     // odometry itself (with the shift: 0.58 against 0.45 m short without the pull).
-    params.carried_turn_shift = 0.0;
-    HitCountGrid map = EmptyMapFor(drive, params);
+    params.set_heading_shift_per_correction(0.0);
+    HitCountGrid map = EmptyMapFor(drive, {}, params);
     const LocalSearchResult r = RunLocalSearch(drive, params, 1, map);
     return drive.scans.back().odometry.x() - r.trajectory.back().pose.x();
   };
   // The odometry is exact, so any shortfall is the score's pull. What remains with the frontier
   // left out comes from the wall each door frame hid from the previous scan.
-  const double all = shortfall(-1.0), within = shortfall(LocalSearchParams{}.frontier_margin);
+  const double all = shortfall(-1.0), within = shortfall(LocalSearchParams{}.reach_margin_m());
   EXPECT_GT(all, 2.0);
   EXPECT_LT(std::abs(within), all / 3) << "every return scored: " << all << " m short";
   // Where the frame's hidden wall leaves the score flat, the swarm's pick among equal counts
   // wanders; the odometry pull keeps such steps where odometry puts them (0.06 against 0.2 m).
-  const double unpulled = shortfall(LocalSearchParams{}.frontier_margin, 0.0);
+  const double unpulled = shortfall(LocalSearchParams{}.reach_margin_m(), 0.0);
   EXPECT_LT(std::abs(within), 0.75 * unpulled) << "without the pull: " << unpulled << " m short";
 }
 
@@ -314,14 +317,14 @@ TEST(LocalSearchTest, DownAFeaturelessHallTheStepKeepsThePredictionAlongIt) {
   const double odometry_error = drive.scans.back().odometry.x() - end;
   const auto end_error = [&](double min_constraint_ratio, std::uint64_t seed) {
     LocalSearchParams params;
-    params.min_constraint_ratio = min_constraint_ratio;
-    HitCountGrid map = EmptyMapFor(drive, params);
+    params.set_odometry_below_information(min_constraint_ratio);
+    HitCountGrid map = EmptyMapFor(drive, {}, params);
     return RunLocalSearch(drive, params, seed, map).trajectory.back().pose.x() - end;
   };
   double worst_kept = 0.0, worst_picked = 0.0;
   for (std::uint64_t seed = 1; seed <= 6; ++seed) {
     worst_kept =
-        std::max(worst_kept, std::abs(end_error(LocalSearchParams{}.min_constraint_ratio, seed)));
+        std::max(worst_kept, std::abs(end_error(LocalSearchParams{}.odometry_below_information(), seed)));
     worst_picked = std::max(worst_picked, std::abs(end_error(0.0, seed)));
   }
   EXPECT_LT(worst_kept, odometry_error + 0.1) << "odometry " << odometry_error << " m off";

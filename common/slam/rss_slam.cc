@@ -21,82 +21,84 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
 std::size_t StretchStart(const RssSlamParams& params, const RssSlamState& state,
                          std::size_t current, const std::optional<LoopClosure>& loop) {
   std::size_t first = loop ? loop->constraint.earlier + 1 : state.last_global;
-  if (params.max_stretch > 0 && current + 1 - first > params.max_stretch) {
-    first = current + 1 - params.max_stretch;
-  }
+  const std::size_t max_stretch = params.global().max_stretch_scans();
+  if (max_stretch > 0 && current + 1 - first > max_stretch) first = current + 1 - max_stretch;
   return first;
 }
 
 }  // namespace
 
-std::size_t ScansToMap(const Dataset& dataset, const RssSlamParams& params) {
+std::size_t ScansToMap(const Dataset& dataset, const proto::SlamParams& params) {
   const std::size_t n = dataset.scans.size();
-  return params.max_scans > 0 ? std::min(n, params.max_scans) : n;
+  return params.max_scans() > 0 ? std::min<std::size_t>(n, params.max_scans()) : n;
 }
 
 void ValidateRssSlamParams(const RssSlamParams& params) {
-  ValidateLocalSearchParams(params.local);
-  ValidateGlobalSearchParams(params.global);
-  ValidateLoopDetectionParams(params.loops);
-  if (!(params.refine_error.array() >= 0.0).all() || !params.refine_error.allFinite() ||
-      !(params.loop_bound_scale >= 0.0) || !(params.sharpness_tolerance >= 0.0)) {
-    throw Error("global search: the search bounds must be finite and not negative");
-  }
-  if (!(params.min_periodic_eq6_gain >= 0.0 && params.min_periodic_eq6_gain < 1.0))
-    throw Error("global search: the minimum eq. 6 gain without a loop must be in [0, 1)");
-  if (!(params.min_eq7_gain >= 0.0 && params.min_eq7_gain < 1.0))
-    throw Error("global search: the minimum eq. 7 gain must be in [0, 1)");
-  if (params.global_search) {
-    if (params.generations == 0) throw Error("global search: at least 1 generation is needed");
-    ValidateIslandModelParams(GlobalIslandModel(params));
+  ValidateLocalSearchParams(params.local());
+  ValidateGlobalSearchParams(params.global());
+  ValidateLoopDetectionParams(params.loops());
+  const GlobalSearchParams& g = params.global();
+  const Eigen::Vector3d refine = RefineBounds(g);
+  if (!(refine.array() >= 0.0).all() || !refine.allFinite())
+    throw Error("global.refine_bound_*: must be finite and not negative");
+  if (!(g.loop_bound_scale() >= 0.0) || !std::isfinite(g.loop_bound_scale()))
+    throw Error("global.loop_bound_scale: must be finite and not negative");
+  if (!(g.sharpness_tolerance() >= 0.0) || !std::isfinite(g.sharpness_tolerance()))
+    throw Error("global.sharpness_tolerance: must be finite and not negative");
+  if (!(g.min_periodic_sharpening() >= 0.0 && g.min_periodic_sharpening() < 1.0))
+    throw Error("global.min_periodic_sharpening: must be in [0, 1)");
+  if (g.enabled()) {
+    if (g.generations() == 0) throw Error("global.generations: at least 1");
+    ValidateIslandModelParams(GlobalIslandModel(g));
   }
 }
 
-IslandModelParams GlobalIslandModel(const RssSlamParams& params) {
+IslandModelParams GlobalIslandModel(const GlobalSearchParams& params) {
   IslandModelParams model;
-  model.islands = params.islands;
-  model.algorithm = FindPreset(params.preset).algorithm;
+  model.islands = params.islands();
+  model.algorithm = FindPreset(params.preset()).algorithm;
   return model;
 }
 
 HitCountGrid BaseMapFor(const Dataset& dataset, std::span<const Pose2> poses, std::size_t first,
-                        std::size_t last, const LocalSearchParams& params) {
-  HitCountGrid map = EmptyMapFor(dataset, params);
+                        std::size_t last, const RssSlamParams& params) {
+  HitCountGrid map = EmptyMapFor(dataset, params.map(), params.local());
   for (std::size_t k = 0; k < poses.size(); ++k) {
     if (k < first || k >= last) map.AddScan(dataset.scans[k], poses[k]);
   }
   return map;
 }
 
-Eigen::Vector3d GlobalSearchBounds(const RssSlamParams& params, std::span<const Pose2> poses,
+Eigen::Vector3d GlobalSearchBounds(const GlobalSearchParams& params, std::span<const Pose2> poses,
                                    const std::optional<LoopConstraint>& loop) {
-  if (!loop) return params.refine_error;
+  if (!loop) return RefineBounds(params);
   const Pose2 expected = poses[loop->earlier] * loop->relative;
   const Pose2 discrepancy = poses[loop->later].inverse() * expected;
   const Eigen::Vector3d size(discrepancy.translation().norm(), discrepancy.translation().norm(),
                              std::abs(discrepancy.theta()));
-  return (params.loop_bound_scale * size + params.refine_error).cwiseMin(params.global.max_error);
+  return (params.loop_bound_scale() * size + RefineBounds(params))
+      .cwiseMin(PartitionErrorBounds(params));
 }
 
 GlobalSearchProblem MakeGlobalSearchProblem(const Dataset& dataset, const GlobalSearchTask& task,
-                                            const RssSlamParams& params, const HitCountGrid& base) {
-  GlobalSearchParams global = params.global;
-  global.max_error = task.max_error;
-  if (!task.loop) global.w2 = 0.0;  // 002: a search not started by a loop has no W2 term
-  return GlobalSearchProblem(dataset.scans, task.poses, task.first, task.last, base, global,
-                             task.loop, task.held);
+                                            const GlobalSearchParams& params,
+                                            const HitCountGrid& base) {
+  return GlobalSearchProblem(dataset.scans, task.poses, task.first, task.last, base, params,
+                             task.max_error, task.loop);
 }
 
 namespace {
 
 // RunRssSlam over a log whose odometry stalls are filled.
-RssSlamResult RunOverFilledLog(const Dataset& dataset, const RssSlamParams& params,
-                               std::uint64_t seed, const RssSlamRuntime& runtime) {
+RssSlamResult RunOverFilledLog(const Dataset& dataset, const proto::SlamParams& slam,
+                               const RssSlamRuntime& runtime) {
   if (dataset.scans.empty()) throw Error(dataset.source + ": the log has no laser scans");
   CheckOdometrySteps(dataset);
   const auto run_start = std::chrono::steady_clock::now();
-  const std::size_t n = ScansToMap(dataset, params);
-  const Rng root(seed);
+  const RssSlamParams& params = slam.rss();
+  const GlobalSearchParams& global = params.global();
+  const std::size_t n = ScansToMap(dataset, slam);
+  const Rng root(slam.seed());
 
   RssSlamState state = runtime.resume ? *runtime.resume : RssSlamState{};
   if (state.next_scan > n || state.poses.size() != state.next_scan) {
@@ -122,7 +124,7 @@ RssSlamResult RunOverFilledLog(const Dataset& dataset, const RssSlamParams& para
     state.times.total = resumed_total + SecondsSince(run_start);
     runtime.checkpoint(state);
   };
-  HitCountGrid map = BaseMapFor(dataset, state.poses, 0, 0, params.local);
+  HitCountGrid map = BaseMapFor(dataset, state.poses, 0, 0, params);
   state.poses.reserve(n);
 
   // Runs the global search scan `current` starts, or finishes the one state.search holds.
@@ -133,42 +135,35 @@ RssSlamResult RunOverFilledLog(const Dataset& dataset, const RssSlamParams& para
     task.first = StretchStart(params, state, current, loop);
     task.last = current + 1;
     task.poses = state.poses;
-    if (loop) {
-      task.loop = loop->constraint;
-      if (params.hold_loops) {
-        for (std::size_t k = 0; k + 1 < state.loops.size(); ++k) {
-          const LoopConstraint& c = state.loops[k].constraint;
-          if (c.later >= task.first && c.later < task.last) task.held.push_back(c);
-        }
-      }
-    }
-    task.max_error = GlobalSearchBounds(params, task.poses, task.loop);
+    if (loop) task.loop = loop->constraint;
+    task.max_error = GlobalSearchBounds(global, task.poses, task.loop);
     HitCountGrid base = map;
     for (std::size_t k = task.first; k < task.last; ++k) {
       base.AddScan(dataset.scans[k], state.poses[k], -1);
     }
-    const GlobalSearchProblem problem = MakeGlobalSearchProblem(dataset, task, params, base);
+    const GlobalSearchProblem problem = MakeGlobalSearchProblem(dataset, task, global, base);
+    const std::size_t generations = global.generations();
     StopCriteria stop;
-    stop.max_generations = params.generations;
+    stop.max_generations = generations;
     const IslandStepper step =
         runtime.global ? runtime.global(task, problem) : LocalIslandStepper(problem);
     // Islands that do not fit the problem are refused by Island::Evolve.
     Archipelago islands = state.search ? Archipelago::FromCheckpoint(*state.search)
-                                       : Archipelago(GlobalIslandModel(params), stop,
+                                       : Archipelago(GlobalIslandModel(global), stop,
                                                      root.Stream(n + task.index).NextU64());
     if (!state.search) islands.Start(step);
     state.search_on_loop = loop.has_value();
-    if (runtime.progress) runtime.progress("global search", 0, params.generations);
+    if (runtime.progress) runtime.progress("global search", 0, generations);
     while (!islands.RunEpoch(step)) {
       if (runtime.checkpoint) {
         state.search = islands.Checkpoint();
         checkpoint();
       }
       if (runtime.progress) {
-        runtime.progress("global search",
-                         std::min(params.generations,
-                                  islands.epoch() * GlobalIslandModel(params).migration.interval),
-                         params.generations);
+        runtime.progress(
+            "global search",
+            std::min(generations, islands.epoch() * GlobalIslandModel(global).migration.interval),
+            generations);
       }
     }
     state.search.reset();
@@ -182,15 +177,14 @@ RssSlamResult RunOverFilledLog(const Dataset& dataset, const RssSlamParams& para
     record.evaluations = islands.evaluations();
     problem.Evaluate(problem.Identity(), record.before);
     const std::optional<std::size_t> pick = PickGlobalSolution(
-        all.f, record.before[0] + params.sharpness_tolerance * std::abs(record.before[0]));
+        all.f, record.before[0] + global.sharpness_tolerance() * std::abs(record.before[0]));
     // Keep a correction that costs the map at most the tolerance in sharpness and that leaving
     // the stretch alone does not match on both objectives.
     const auto best = static_cast<Eigen::Index>(pick.value_or(0));
     record.after[0] = all.f(0, best);
     record.after[1] = all.f(1, best);
-    record.applied =
-        pick && WorthApplying(record.before, record.after,
-                              loop ? 0.0 : params.min_periodic_eq6_gain, params.min_eq7_gain);
+    record.applied = pick && WorthApplying(record.before, record.after,
+                                           loop ? 0.0 : global.min_periodic_sharpening());
     if (record.applied) {
       const std::vector<Pose2> corrected = problem.Apply(all.x.col(best));
       map = std::move(base);
@@ -225,7 +219,7 @@ RssSlamResult RunOverFilledLog(const Dataset& dataset, const RssSlamParams& para
     Pose2 pose = scan.odometry;
     if (i > 0) {
       const StepCorrection c =
-          CorrectLogStep(map, dataset, state.poses, params.local, root.Stream(i));
+          CorrectLogStep(map, dataset, state.poses, params.local(), root.Stream(i));
       pose = c.pose;
       state.local_evaluations += c.evaluations;
     }
@@ -234,12 +228,13 @@ RssSlamResult RunOverFilledLog(const Dataset& dataset, const RssSlamParams& para
     state.next_scan = i + 1;
     state.times.local += SecondsSince(start);
 
-    if (params.global_search) {
+    if (global.enabled()) {
       start = std::chrono::steady_clock::now();
       std::optional<LoopClosure> loop;
-      const bool cooled = state.loops.empty() || i >= state.last_loop + params.loops.cooldown;
-      if (cooled && i % params.loops.check_interval == 0) {
-        loop = DetectLoop(dataset.scans, state.poses, i, params.loops);
+      const bool cooled =
+          state.loops.empty() || i >= state.last_loop + params.loops().cooldown_scans();
+      if (cooled && i % params.loops().check_interval_scans() == 0) {
+        loop = DetectLoop(dataset.scans, state.poses, i, params.loops());
       }
       state.times.detection += SecondsSince(start);
       if (loop) {
@@ -247,7 +242,7 @@ RssSlamResult RunOverFilledLog(const Dataset& dataset, const RssSlamParams& para
         state.last_loop = i;
       }
       const bool periodic =
-          params.global_every > 0 && i + 1 - state.last_global >= params.global_every;
+          global.every_scans() > 0 && i + 1 - state.last_global >= global.every_scans();
       if (loop || periodic) global_search(i, loop);
     }
     scan_done(i);
@@ -271,15 +266,15 @@ RssSlamResult RunOverFilledLog(const Dataset& dataset, const RssSlamParams& para
 
 }  // namespace
 
-RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, std::uint64_t seed,
+RssSlamResult RunRssSlam(const Dataset& dataset, const proto::SlamParams& params,
                          const RssSlamRuntime& runtime) {
-  ValidateRssSlamParams(params);
-  std::vector<OdometryStall> stalls = FindOdometryStalls(dataset.scans, params.local.max_error);
+  ValidateRssSlamParams(params.rss());
+  std::vector<OdometryStall> stalls =
+      FindOdometryStalls(dataset.scans, BaseErrorCube(params.rss().local()));
   const std::size_t n = ScansToMap(dataset, params);
   std::erase_if(stalls, [n](const OdometryStall& stall) { return stall.first >= n; });
-  RssSlamResult result = RunWithOdometryStallsFilled(dataset, stalls, [&](const Dataset& log) {
-    return RunOverFilledLog(log, params, seed, runtime);
-  });
+  RssSlamResult result = RunWithOdometryStallsFilled(
+      dataset, stalls, [&](const Dataset& log) { return RunOverFilledLog(log, params, runtime); });
   result.odometry_stalls = std::move(stalls);
   return result;
 }

@@ -17,54 +17,23 @@
 #include "common/slam/global_search_problem.h"
 #include "common/slam/local_search.h"
 #include "common/slam/loop_detector.h"
+#include "evoslam/slam_params.pb.h"
 
 namespace evoslam {
 
 // Paper 002's whole algorithm: the local search at every step, and the global search over the
-// steps since the last one when a loop is detected, or every `global_every` steps.
-struct RssSlamParams {
-  LocalSearchParams local;
-  GlobalSearchParams global;
-  LoopDetectionParams loops;
-  bool global_search = true;     // false: local search alone
-  std::size_t global_every = 0;  // k; 0: only on a detected loop (docs/rss_slam.md)
-  // A global search covers at most this many steps back (0: the whole loop, or all since the
-  // last search). The drift a loop reveals built up over all of it (docs/rss_slam.md).
-  std::size_t max_stretch = 0;
-  // A search's bounds on each partition's error (m, m, rad). A loop's search may correct up to
-  // loop_bound_scale times the loop's discrepancy plus refine_error, within global.max_error; a
-  // periodic search (no loop) refines within refine_error. Bounds sized to the error at hand keep
-  // the first population near the trajectory, which is close to right.
-  Eigen::Vector3d refine_error{0.02, 0.02, 0.002};
-  double loop_bound_scale = 1.5;
-  // A correction may make the map's eq. 6 score worse by at most this fraction (closing a loop
-  // may blur a little); among those allowed, 002's choice: the loop closed best.
-  double sharpness_tolerance = 0.005;
-  // A correction that leaves the map less sharp (eq. 6) must lower eq. 7 by more than this
-  // fraction to be applied; 0: any improvement will do. A search that barely closes its loop
-  // while it blurs the map is more likely bending the path to a place it never was.
-  double min_eq7_gain = 0.0;
-  // A loop's search also keeps the loops found before it closed: eq. 7 adds the miss of every
-  // earlier loop whose later scan the stretch bends (docs/rss_slam.md).
-  bool hold_loops = false;
-  // A search without a loop (every global_every scans) has only the map to go by, and eq. 6
-  // cannot see below a cell: bending a stretch by millimetres sharpens it by a few thousandths
-  // while it moves the trajectory centimetres off. Such a correction is applied only if it
-  // sharpens the map by more than this fraction (or frees the path, eq. 7).
-  double min_periodic_eq6_gain = 0.01;
-  std::size_t generations = 100;  // 002
-  std::size_t islands = 2;        // each runs 002's (mu+lambda) preset
-  std::string preset = "mu+lambda-002";
-  std::size_t max_scans = 0;  // 0: all
-};
+// steps since the last one when a loop is detected, or every global.every_scans steps. What each
+// parameter does is in proto/evoslam/slam_params.proto and docs/methods/rss.md.
+using RssSlamParams = proto::RssParams;
 
+// Throws Error naming the first parameter out of its range.
 void ValidateRssSlamParams(const RssSlamParams& params);
 
 // The number of scans a run over `dataset` maps.
-std::size_t ScansToMap(const Dataset& dataset, const RssSlamParams& params);
+std::size_t ScansToMap(const Dataset& dataset, const proto::SlamParams& params);
 
 // The island model each global search runs.
-IslandModelParams GlobalIslandModel(const RssSlamParams& params);
+IslandModelParams GlobalIslandModel(const GlobalSearchParams& params);
 
 // One global search, as run.
 struct GlobalSearchRecord {
@@ -117,12 +86,11 @@ struct GlobalSearchTask {
   std::size_t first = 0, last = 0;
   std::span<const Pose2> poses;  // scans [0, last)
   std::optional<LoopConstraint> loop;
-  std::vector<LoopConstraint> held;  // earlier loops whose later scan lies in [first, last)
   Eigen::Vector3d max_error = Eigen::Vector3d::Zero();  // each partition's, as bounded for this
 };
 
 // The bounds of a global search over `poses` for `loop` (none: a periodic search).
-Eigen::Vector3d GlobalSearchBounds(const RssSlamParams& params, std::span<const Pose2> poses,
+Eigen::Vector3d GlobalSearchBounds(const GlobalSearchParams& params, std::span<const Pose2> poses,
                                    const std::optional<LoopConstraint>& loop);
 
 // Where the global searches run and what the run reports. The defaults run it here.
@@ -141,18 +109,20 @@ struct RssSlamRuntime {
 // The map of every scan other than [first, last), at `poses` (scans [0, poses.size())): the base
 // a global search re-inserts its stretch into.
 HitCountGrid BaseMapFor(const Dataset& dataset, std::span<const Pose2> poses, std::size_t first,
-                        std::size_t last, const LocalSearchParams& params);
+                        std::size_t last, const RssSlamParams& params);
 
 // The global search problem of a task, exactly as RunRssSlam builds it: what a worker rebuilds.
 // `base` must outlive the problem.
 GlobalSearchProblem MakeGlobalSearchProblem(const Dataset& dataset, const GlobalSearchTask& task,
-                                            const RssSlamParams& params, const HitCountGrid& base);
+                                            const GlobalSearchParams& params,
+                                            const HitCountGrid& base);
 
-// Runs the whole algorithm over a log. Scan i's local search draws from random stream i of the
-// seed and global search g from stream (scans + g), so the result depends on the inputs and the
-// seed alone, wherever the searches run. Where the log's odometry stalls with a catch-up beyond
-// the local search's cube (FindOdometryStalls), each step starts from the stall filled in.
-RssSlamResult RunRssSlam(const Dataset& dataset, const RssSlamParams& params, std::uint64_t seed,
+// Runs the whole algorithm over a log with params.rss(), mapping params.max_scans() scans. Scan
+// i's local search draws from random stream i of params.seed() and global search g from stream
+// (scans + g), so the result depends on the inputs and the seed alone, wherever the searches run.
+// Where the log's odometry stalls with a catch-up beyond the local search's cube
+// (FindOdometryStalls), each step starts from the stall filled in.
+RssSlamResult RunRssSlam(const Dataset& dataset, const proto::SlamParams& params,
                          const RssSlamRuntime& runtime = {});
 
 }  // namespace evoslam

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -11,6 +12,7 @@
 #include "common/sim/simulator.h"
 #include "common/sim/world.h"
 #include "common/slam/slam_params.h"
+#include "common/slam/slam_testing.h"
 #include "common/util/error.h"
 
 namespace evoslam {
@@ -27,10 +29,10 @@ Dataset Drive(std::size_t scans) {
 // Small searches, so that a run takes a fraction of a second.
 RssSlamParams Quick() {
   RssSlamParams p;
-  p.local.iterations = 10;
-  p.global_every = 25;
-  p.generations = 4;
-  p.global.partitions = 3;
+  p.mutable_local()->set_iterations(10);
+  p.mutable_global()->set_every_scans(25);
+  p.mutable_global()->set_generations(4);
+  p.mutable_global()->set_partitions(3);
   return p;
 }
 
@@ -55,15 +57,15 @@ void ExpectSameRun(const RssSlamResult& a, const RssSlamResult& b) {
 TEST(RssSlamTest, LocalOnlyIsTheLocalSearch) {
   const Dataset d = Drive(60);
   RssSlamParams params = Quick();
-  params.global_search = false;
+  params.mutable_global()->set_enabled(false);
   std::vector<Pose2> last;
   // Both ways of scoring a step: every return, and only those within the previous scan's reach
   // less a margin (6 m of the 8 m laser's, which must change the trajectory).
   for (const double margin : {-1.0, 6.0}) {
-    params.local.frontier_margin = margin;
-    const RssSlamResult slam = RunRssSlam(d, params, 5);
-    HitCountGrid map = EmptyMapFor(d, params.local);
-    const LocalSearchResult local = RunLocalSearch(d, params.local, 5, map);
+    params.mutable_local()->set_reach_margin_m(margin);
+    const RssSlamResult slam = testing::RunRss(d, params, 5);
+    HitCountGrid map = EmptyMapFor(d, params.map(), params.local());
+    const LocalSearchResult local = RunLocalSearch(d, params.local(), 5, map);
     ASSERT_EQ(slam.trajectory.size(), local.trajectory.size());
     for (std::size_t i = 0; i < local.trajectory.size(); ++i) {
       EXPECT_EQ(slam.trajectory[i].pose.translation(), local.trajectory[i].pose.translation());
@@ -80,21 +82,21 @@ TEST(RssSlamTest, LocalOnlyIsTheLocalSearch) {
 TEST(RssSlamTest, GlobalSearchesRunEveryKStepsOverTheStepsSinceTheLast) {
   const Dataset d = Drive(80);
   const RssSlamParams params = Quick();
-  const RssSlamResult r = RunRssSlam(d, params, 5);
+  const RssSlamResult r = testing::RunRss(d, params, 5);
   std::size_t periodic = 0, next_first = 0;
   for (const GlobalSearchRecord& g : r.global_searches) {
     if (g.loop) continue;
     ++periodic;
     EXPECT_EQ(g.first, next_first);
-    EXPECT_EQ(g.last - g.first, params.global_every);
+    EXPECT_EQ(g.last - g.first, params.global().every_scans());
     next_first = g.last;
     EXPECT_GT(g.evaluations, 0u);
     // Applied exactly when the correction sharpens the map by the minimum gain or frees the path.
     EXPECT_EQ(g.applied,
-              g.after[0] < g.before[0] - params.min_periodic_eq6_gain * std::abs(g.before[0]) ||
+              g.after[0] < g.before[0] - params.global().min_periodic_sharpening() * std::abs(g.before[0]) ||
                   g.after[1] < g.before[1]);
   }
-  EXPECT_EQ(periodic, 80 / params.global_every);
+  EXPECT_EQ(periodic, 80 / params.global().every_scans());
   EXPECT_EQ(r.global_evaluations, [&] {
     std::size_t n = 0;
     for (const GlobalSearchRecord& g : r.global_searches) n += g.evaluations;
@@ -105,7 +107,7 @@ TEST(RssSlamTest, GlobalSearchesRunEveryKStepsOverTheStepsSinceTheLast) {
 TEST(RssSlamTest, ProblemsRebuiltFromTheWireGiveTheSameRun) {
   const Dataset d = Drive(60);
   const RssSlamParams params = Quick();
-  const RssSlamResult here = RunRssSlam(d, params, 9);
+  const RssSlamResult here = testing::RunRss(d, params, 9);
 
   // What a worker does: the task through its wire form, the base map and problem rebuilt.
   struct Rebuilt {
@@ -118,12 +120,12 @@ TEST(RssSlamTest, ProblemsRebuiltFromTheWireGiveTheSameRun) {
   runtime.global = [&](const GlobalSearchTask& task, const GlobalSearchProblem&) {
     auto r = std::make_shared<Rebuilt>();
     const GlobalSearchTask copy = GlobalSearchTaskFromProto(ToProto(task), r->poses);
-    r->base.emplace(BaseMapFor(d, r->poses, copy.first, copy.last, params.local));
-    r->problem.emplace(MakeGlobalSearchProblem(d, copy, params, *r->base));
+    r->base.emplace(BaseMapFor(d, r->poses, copy.first, copy.last, params));
+    r->problem.emplace(MakeGlobalSearchProblem(d, copy, params.global(), *r->base));
     built.push_back(r);
     return LocalIslandStepper(*r->problem, 1);
   };
-  const RssSlamResult remote = RunRssSlam(d, params, 9, runtime);
+  const RssSlamResult remote = testing::RunRss(d, params, 9, runtime);
   EXPECT_EQ(built.size(), here.global_searches.size());
   ExpectSameRun(here, remote);
 }
@@ -133,9 +135,9 @@ TEST(RssSlamTest, ProblemsRebuiltFromTheWireGiveTheSameRun) {
 void ExpectResumesGiveTheUninterruptedRun(bool free_frontier) {
   const Dataset d = Drive(60);
   RssSlamParams params = Quick();
-  params.local.free_frontier = free_frontier;
-  params.generations = 25;       // three epochs of 10: checkpoints inside each search...
-  params.preset = "immune-004";  // ...which 002's (mu+lambda) ends early here, converged
+  params.mutable_local()->set_free_frontier(free_frontier);
+  params.mutable_global()->set_generations(25);       // three epochs of 10: checkpoints inside each search...
+  params.mutable_global()->set_preset("immune-004");  // ...which 002's (mu+lambda) ends early here, converged
   std::vector<RssSlamState> states, part_way;
   RssSlamRuntime record;
   record.checkpoint = [&](const RssSlamState& s) {
@@ -145,7 +147,7 @@ void ExpectResumesGiveTheUninterruptedRun(bool free_frontier) {
       states.push_back(s);
     }
   };
-  const RssSlamResult whole = RunRssSlam(d, params, 3, record);
+  const RssSlamResult whole = testing::RunRss(d, params, 3, record);
   ASSERT_EQ(states.size(), 2u);
   EXPECT_EQ(states[0].global_searches.size(), 1u);  // just after the first global search
   // Two searches, each checkpointed after its first two epochs.
@@ -157,17 +159,17 @@ void ExpectResumesGiveTheUninterruptedRun(bool free_frontier) {
   for (const RssSlamState& state : states) {
     RssSlamRuntime resume;
     resume.resume = &state;
-    ExpectSameRun(whole, RunRssSlam(d, params, 3, resume));
+    ExpectSameRun(whole, testing::RunRss(d, params, 3, resume));
   }
   RssSlamState broken = states[0];
   broken.poses.pop_back();
   RssSlamRuntime bad;
   bad.resume = &broken;
-  EXPECT_THROW(RunRssSlam(d, params, 3, bad), Error);
+  EXPECT_THROW(testing::RunRss(d, params, 3, bad), Error);
   // A part-way search said to be a loop's, with no loop at its scan.
   broken = part_way[0];
   broken.search_on_loop = true;
-  EXPECT_THROW(RunRssSlam(d, params, 3, bad), Error);
+  EXPECT_THROW(testing::RunRss(d, params, 3, bad), Error);
 }
 
 // Also with the seen space's edge left free, whose ray coverage a resumed run renders afresh.
@@ -181,34 +183,34 @@ TEST(RssSlamTest, ResumingFromAnyCheckpointGivesTheUninterruptedRun) {
 TEST(RssSlamTest, SeedsChangeTheRun) {
   const Dataset d = Drive(40);
   const RssSlamParams params = Quick();
-  const RssSlamResult a = RunRssSlam(d, params, 1), b = RunRssSlam(d, params, 2);
+  const RssSlamResult a = testing::RunRss(d, params, 1), b = testing::RunRss(d, params, 2);
   EXPECT_NE(a.trajectory.back().pose.x(), b.trajectory.back().pose.x());
 }
 
 TEST(RssSlamTest, PeriodicBoundsAreTheRefinementsAndLoopBoundsFollowTheDiscrepancy) {
-  RssSlamParams params;
+  const GlobalSearchParams params;
   const std::vector<Pose2> poses = {Pose2(0, 0, 0), Pose2(1, 0, 0), Pose2(2, 0.3, 0.05)};
-  EXPECT_EQ(GlobalSearchBounds(params, poses, std::nullopt), params.refine_error);
+  EXPECT_EQ(GlobalSearchBounds(params, poses, std::nullopt), RefineBounds(params));
   // The loop says scan 2 stands where scan 0 does: 2.02 m and 0.05 rad away.
   const LoopConstraint loop{0, 2, Pose2()};
   const Eigen::Vector3d b = GlobalSearchBounds(params, poses, loop);
-  EXPECT_EQ(b.x(), params.global.max_error.x());  // capped
-  EXPECT_NEAR(b.z(), 1.5 * 0.05 + params.refine_error.z(), 1e-12);
+  EXPECT_EQ(b.x(), params.max_error_x_m());  // capped
+  EXPECT_NEAR(b.z(), 1.5 * 0.05 + params.refine_bound_theta_rad(), 1e-12);
 }
 
 TEST(RssSlamTest, RefusesBadParametersAndEmptyLogs) {
   RssSlamParams params;
-  params.generations = 0;
+  params.mutable_global()->set_generations(0);
   EXPECT_THROW(ValidateRssSlamParams(params), Error);
   params = {};
-  params.preset = "no-such-preset";
+  params.mutable_global()->set_preset("no-such-preset");
   EXPECT_THROW(ValidateRssSlamParams(params), Error);
   params = {};
-  params.refine_error.x() = -1.0;
+  params.mutable_global()->set_refine_bound_x_m(-1.0);
   EXPECT_THROW(ValidateRssSlamParams(params), Error);
   Dataset empty;
   empty.source = "empty.clf";
-  EXPECT_THROW(RunRssSlam(empty, {}, 1), Error);
+  EXPECT_THROW(testing::RunRss(empty, {}, 1), Error);
 }
 
 // A corrupt odometry reading is refused before any work, naming the scan it is in.
@@ -219,7 +221,7 @@ TEST(RssSlamTest, RefusesALogWhoseOdometryJumpsBeyondTheLasersReach) {
   d.source = "jump.clf";
   d.scans[20].odometry = Pose2(3000.0, 0.0, 0.0);
   try {
-    RunRssSlam(d, {}, 1);
+    testing::RunRss(d, {}, 1);
     ADD_FAILURE() << "a 3 km odometry jump was accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("jump.clf: odometry moves"), std::string::npos)

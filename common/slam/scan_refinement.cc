@@ -68,13 +68,13 @@ std::optional<Eigen::Vector3d> CoordinateScale(std::span<const Eigen::Vector2d> 
 }  // namespace
 
 void ValidateScanRefinementParams(const ScanRefinementParams& p) {
-  if (p.iterations > 1000) throw Error("scan refinement: at most 1000 iterations");
-  if (!IsFiniteNonNegative(p.max_shift_cells))
-    throw Error("scan refinement: the largest shift must be finite and not negative");
-  if (!IsFiniteNonNegative(p.max_turn))
-    throw Error("scan refinement: the largest turn must be finite and not negative");
-  if (!(p.wall_share >= 0.0 && p.wall_share <= 1.0))
-    throw Error("scan refinement: the wall share must lie in [0, 1]");
+  if (p.iterations() > 1000) throw Error("local.refine.iterations: at most 1000");
+  if (!IsFiniteNonNegative(p.max_shift_cells()))
+    throw Error("local.refine.max_shift_cells: must be finite and not negative");
+  if (!IsFiniteNonNegative(p.max_turn_rad()))
+    throw Error("local.refine.max_turn_rad: must be finite and not negative");
+  if (!(p.wall_share() >= 0.0 && p.wall_share() <= 1.0))
+    throw Error("local.refine.wall_share: must lie in [0, 1]");
 }
 
 std::optional<OccupancySample> SampleOccupancy(const HitCountGrid& map,
@@ -117,9 +117,9 @@ RefinedPose RefineScanPose(const HitCountGrid& map, std::span<const Eigen::Vecto
   };
   const std::optional<Eigen::Vector3d> scale = CoordinateScale(returns);
   if (!scale) return {start, Eigen::Matrix3d::Zero()};
-  const double max_shift = params.max_shift_cells * map.resolution();
-  Normal at = NormalEquations(map, returns, start, params.wall_share);
-  for (std::size_t it = 0; it < params.iterations; ++it) {
+  const double max_shift = params.max_shift_cells() * map.resolution();
+  Normal at = NormalEquations(map, returns, start, params.wall_share());
+  for (std::size_t it = 0; it < params.iterations(); ++it) {
     const Eigen::Matrix3d h = scale->asDiagonal() * at.h * scale->asDiagonal();
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(h);
     if (eigen.info() != Eigen::Success) break;
@@ -138,8 +138,8 @@ RefinedPose RefineScanPose(const HitCountGrid& map, std::span<const Eigen::Vecto
     if (!next.allFinite()) break;
     const double shift = next.head<2>().norm();
     if (shift > max_shift) next.head<2>() *= max_shift / shift;
-    next.z() = std::clamp(next.z(), -params.max_turn, params.max_turn);
-    const Normal there = NormalEquations(map, returns, moved(next), params.wall_share);
+    next.z() = std::clamp(next.z(), -params.max_turn_rad(), params.max_turn_rad());
+    const Normal there = NormalEquations(map, returns, moved(next), params.wall_share());
     if (!(there.cost < at.cost)) break;
     offset = next;
     at = there;

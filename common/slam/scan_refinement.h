@@ -8,29 +8,20 @@
 
 #include "common/grid/hit_count_grid.h"
 #include "common/transform/pose2.h"
+#include "evoslam/slam_params.pb.h"
 
 namespace evoslam {
 
 // Gauss-Newton alignment of a scan to the map's occupancy, bilinearly interpolated between cell
 // centres (as Hector SLAM aligns scans). Eq. 1 is flat within a cell, so the PSO places a step to
 // a cell at best; the interpolated occupancy has a slope inside the cells next to a wall, which
-// the refinement follows. Returns that fall where the map has nothing pull nowhere.
-struct ScanRefinementParams {
-  std::size_t iterations = 10;  // 0: no refinement
-  // How far the refined pose may move from the start, in map cells: the refinement chooses a
-  // place within the cell the PSO found, it does not search. Along a corridor, where the scan
-  // pins nothing down, a looser bound let the pose slide (docs/rss_slam.md).
-  double max_shift_cells = 0.5;
-  double max_turn = 0.02;  // rad
-  // How occupied a cell reads: its count against this share of the strongest count in the block
-  // of 4 by 4 cells around the point sampled, at most 1. Range noise scatters a few of a wall's
-  // hits into the cells either side of it, and the cells it passes through collect the rest, so
-  // counted this way the occupancy peaks along the wall and the refinement pulls the returns onto
-  // that line; read as 1 wherever a count is above 0 (a share of 0), a wall two or three cells
-  // thick is flat across. A share below 1 keeps a wall's cells, whose counts vary along it, level
-  // with one another, so that they do not push a pose along a corridor (docs/rss_slam.md).
-  double wall_share = 0.3;
-};
+// the refinement follows. Returns that fall where the map has nothing pull nowhere. Its bound
+// keeps it within the cell the PSO found: it chooses a place there, it does not search. A cell's
+// occupancy is its count against wall_share of the strongest count in the 4 by 4 cells around the
+// point, at most 1: range noise scatters a wall's hits into the cells either side of it, so read
+// this way the occupancy peaks along the wall, and a wall's cells, whose counts vary along it,
+// stay level with one another and do not push a pose along a corridor (docs/methods/rss.md).
+using ScanRefinementParams = proto::ScanRefinement;
 
 void ValidateScanRefinementParams(const ScanRefinementParams& params);
 

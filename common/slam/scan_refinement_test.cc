@@ -119,7 +119,7 @@ TEST(RefineScanPoseTest, MovesAPoseOffByLessThanACellTowardsTheTruth) {
   const Pose2 truth(3.1, 2.5, 0.8);
   const std::vector<Eigen::Vector2d> returns = RoomReturns(truth);
   ScanRefinementParams params;
-  params.iterations = 10;
+  params.set_iterations(10);
   for (const Pose2& off :
        {Pose2(0.03, -0.02, 0.0), Pose2(-0.025, 0.0, 0.01), Pose2(0.0, 0.035, -0.012)}) {
     const Pose2 start = truth * off;
@@ -140,7 +140,7 @@ TEST(RefineScanPoseTest, HandsOnTheInformationAtThePoseItReturns) {
   ScanRefinementParams params;
   for (const Pose2& start : {truth * Pose2(0.03, -0.02, 0.01), truth}) {
     for (const std::size_t iterations : {std::size_t{0}, std::size_t{1}, std::size_t{10}}) {
-      params.iterations = iterations;
+      params.set_iterations(iterations);
       const RefinedPose refined = RefineScanPose(map, returns, start, params);
       const Eigen::Matrix3d expected = ScanInformation(map, returns, refined.pose, 0.3);
       EXPECT_GT(expected.trace(), 0.0);
@@ -156,17 +156,17 @@ TEST(RefineScanPoseTest, StaysWithinItsLimitsAndLeavesAPoseWithNothingToAlignTo)
   const std::vector<Eigen::Vector2d> returns = RoomReturns(truth);
   const Pose2 start = truth * Pose2(0.04, -0.03, 0.02);
   ScanRefinementParams params;
-  params.iterations = 10;
-  params.max_shift_cells = 0.2;  // 1 cm
-  params.max_turn = 0.004;
+  params.set_iterations(10);
+  params.set_max_shift_cells(0.2);  // 1 cm
+  params.set_max_turn_rad(0.004);
   const Pose2 refined = RefineScanPose(map, returns, start, params).pose;
   EXPECT_LE(Distance(refined, start), 0.01 + 1e-12);
   EXPECT_LE(std::abs(refined.theta() - start.theta()), 0.004 + 1e-12);
   EXPECT_LT(Distance(refined, truth), Distance(start, truth));
 
-  params.iterations = 0;
+  params.set_iterations(0);
   EXPECT_EQ(RefineScanPose(map, returns, start, params).pose, start);
-  params.iterations = 10;
+  params.set_iterations(10);
   const HitCountGrid blank(0.05, Eigen::Vector2d(-1.0, -1.0), 180, 200);
   EXPECT_EQ(RefineScanPose(blank, returns, start, params).pose, start);
   EXPECT_EQ(RefineScanPose(map, {}, start, params).pose, start);
@@ -184,7 +184,7 @@ TEST(RefineScanPoseTest, AHeadingNearPiDoesNotWrapIntoTheLimit) {
   const std::vector<Eigen::Vector2d> returns = ReturnPoints(testing::ScanFrom(room, truth));
   const Pose2 start = truth * Pose2(0.02, 0.02, 0.008);  // heading past pi, wrapped to -pi + ...
   ScanRefinementParams params;
-  params.iterations = 10;
+  params.set_iterations(10);
   const Pose2 refined = RefineScanPose(map, returns, start, params).pose;
   EXPECT_LT(Distance(refined, truth), Distance(start, truth));
   EXPECT_LT(std::abs(WrapAngle(refined.theta() - truth.theta())), 0.005);
@@ -227,7 +227,7 @@ TEST(RefineScanPoseTest, AcrossAThickWallThePoseFollowsTheCountsToItsMiddle) {
   ScanRefinementParams params;
   const Pose2 refined = RefineScanPose(map, returns, start, params).pose;
   EXPECT_LT(std::abs(refined.y() - truth.y()), 0.002) << refined;
-  params.wall_share = 0.0;
+  params.set_wall_share(0.0);
   EXPECT_EQ(RefineScanPose(map, returns, start, params).pose, start);
 }
 
@@ -296,20 +296,20 @@ TEST(KeepPriorWhereUnconstrainedTest, APriorWeightKeepsEachDirectionsShareOfTheO
 TEST(ScanRefinementParamsTest, RejectsLimitsThatAreNegativeOrNotFinite) {
   ScanRefinementParams p;
   EXPECT_NO_THROW(ValidateScanRefinementParams(p));
-  p.max_shift_cells = -0.1;
+  p.set_max_shift_cells(-0.1);
   EXPECT_THROW(ValidateScanRefinementParams(p), Error);
-  p.max_shift_cells = 1.0;
-  p.max_turn = std::numeric_limits<double>::infinity();
+  p.set_max_shift_cells(1.0);
+  p.set_max_turn_rad(std::numeric_limits<double>::infinity());
   EXPECT_THROW(ValidateScanRefinementParams(p), Error);
-  p.max_turn = 0.02;
-  p.iterations = 10;
-  p.wall_share = 1.5;
+  p.set_max_turn_rad(0.02);
+  p.set_iterations(10);
+  p.set_wall_share(1.5);
   EXPECT_THROW(ValidateScanRefinementParams(p), Error);
-  p.wall_share = std::nan("");
+  p.set_wall_share(std::nan(""));
   EXPECT_THROW(ValidateScanRefinementParams(p), Error);
-  p.wall_share = 0.0;
+  p.set_wall_share(0.0);
   EXPECT_NO_THROW(ValidateScanRefinementParams(p));
-  p.iterations = 100000;
+  p.set_iterations(100000);
   EXPECT_THROW(ValidateScanRefinementParams(p), Error);
 }
 

@@ -2,31 +2,41 @@
 #define EVOSLAM_COMMON_SLAM_SLAM_PARAMS_H_
 
 #include <string>
+#include <string_view>
 #include <vector>
 
-#include "common/slam/rss_slam.h"
-#include "evoslam/slam.pb.h"
+#include "evoslam/slam_params.pb.h"
 
 namespace evoslam {
 
-// A SLAM job's parameters on the wire and in report.json. Unset fields take RssSlamParams'
-// defaults (seed 1, method "rss"). Throws Error naming the first bad field.
-RssSlamParams RssSlamParamsFromProto(const proto::SlamParams& params);
-// The same parameters with every field set to what the run uses.
+// The SLAM methods a job may name, in the order --help lists them.
+const std::vector<std::string>& SlamMethodNames();
+
+// Throws Error naming the first parameter that is out of its range, or a method that does not
+// exist (with the list of those that do).
+void ValidateSlamParams(const proto::SlamParams& params);
+
+// The same parameters with every field of the top level and of the method's message set to what
+// the run uses (a field left unset reads as its declared default): what report.json and
+// --print-params show. Validates them first.
 proto::SlamParams CompleteSlamParams(const proto::SlamParams& params);
 
-// A loop on the wire, and back; the way back throws Error when the loop does not lie within
-// scans [0, scans) or lacks its three relative values. `what` names the message it came in.
-proto::LoopClosureRecord ToProto(const LoopClosure& loop);
-LoopClosure LoopClosureFromProto(const proto::LoopClosureRecord& record, std::size_t scans,
-                                 const std::string& what);
+// Sets the parameter `name` from its text form (a number, true/false, or a string): a dotted
+// path within the method's message (local.particles for rss.local.particles) or from the top
+// (seed, rss.local.particles). Throws Error naming the parameter when no field has that name or
+// the text is not a value of its type.
+void SetSlamParam(proto::SlamParams& params, std::string_view name, std::string_view text);
 
-// A global search task on the wire: the stretch, the poses and the loop.
-proto::GlobalSearchSpec ToProto(const GlobalSearchTask& task);
-// The task a spec describes; its poses point into `poses`, which it fills. Throws Error when the
-// spec does not hang together (a stretch outside its poses, a loop outside the stretch).
-GlobalSearchTask GlobalSearchTaskFromProto(const proto::GlobalSearchSpec& spec,
-                                           std::vector<Pose2>& poses);
+// The value of the parameter at the dotted path `name` from the top (rss.local.particles), in
+// text format. Throws Error when no field has that name.
+std::string SlamParamText(const proto::SlamParams& params, std::string_view name);
+
+// Reads a text-format parameter file, as --print-params writes one. Throws Error naming the file
+// and the line of the first thing it cannot read.
+proto::SlamParams ReadSlamParamsFile(const std::string& path);
+
+// The parameters in text format, every field on a line of its own.
+std::string SlamParamsText(const proto::SlamParams& params);
 
 }  // namespace evoslam
 

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <utility>
@@ -13,8 +14,18 @@
 
 #include "common/grid/hit_count_grid.h"
 #include "common/sensor/dataset.h"
+#include "common/slam/rss_slam.h"
 
 namespace evoslam::testing {
+
+// RunRssSlam with the method's parameters `rss` and `seed`, every other parameter at its default.
+inline RssSlamResult RunRss(const Dataset& dataset, const RssSlamParams& rss, std::uint64_t seed,
+                            const RssSlamRuntime& runtime = {}) {
+  proto::SlamParams params;
+  *params.mutable_rss() = rss;
+  params.set_seed(seed);
+  return RunRssSlam(dataset, params, runtime);
+}
 
 // What inserting world points into a map adds, counted the plain way the problems must match to
 // the bit: every point's cell gathered, then sorted and made unique.
