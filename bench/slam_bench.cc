@@ -9,12 +9,12 @@
 #include <vector>
 
 #include "common/io/carmen_reader.h"
-#include "common/slam/global_search_problem.h"
-#include "common/slam/local_search.h"
 #include "common/slam/loop_detector.h"
 #include "common/slam/place_matcher.h"
-#include "common/slam/rss_slam.h"
-#include "common/slam/step_correction_problem.h"
+#include "common/slam/rss/global_search_problem.h"
+#include "common/slam/rss/local_search.h"
+#include "common/slam/rss/rss_slam.h"
+#include "common/slam/rss/step_correction_problem.h"
 #include "common/util/random.h"
 
 namespace evoslam {

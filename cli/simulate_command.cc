@@ -5,7 +5,7 @@
 
 #include "cli/commands.h"
 #include "cli/option_parsing.h"
-#include "common/mapping/line_map.h"
+#include "common/line_map/line_map.h"
 #include "common/sim/route_file.h"
 #include "common/sim/simulator.h"
 #include "common/sim/world.h"

@@ -13,11 +13,9 @@
 #include "cli/job_run.h"
 #include "cli/option_parsing.h"
 #include "cli/service_session.h"
-#include "common/engine/presets.h"
 #include "common/sim/simulator.h"
 #include "common/sim/world.h"
-#include "common/slam/global_search_problem.h"
-#include "common/slam/local_search.h"
+#include "common/slam/methods/slam_methods.h"
 #include "common/slam/slam_params.h"
 #include "common/util/error.h"
 
@@ -57,73 +55,51 @@ std::string TypeName(const std::string& default_text) {
   return default_text.find_first_not_of("0123456789") == std::string::npos ? "UINT" : "FLOAT";
 }
 
+// The parameters with `name` set to `text`, checked as a run would check them (the others at
+// their defaults); throws Error saying what is wrong.
+void CheckParam(const std::string& name, const std::string& text) {
+  proto::SlamParams p;
+  SetSlamParam(p, name, text);
+  ValidateSlamParams(p);
+}
+
 // A flag that sets the SLAM parameter `name` (a dotted path from the top), which stays unset (at
-// its default) without it. Its value is checked against the parameter's type here, and against
-// the rest by ParamsFrom.
-CLI::Option* AddParamOption(CLI::App* cmd, proto::SlamParams& params, const std::string& flag,
-                            const std::string& name, const std::string& help) {
-  const std::string value = SlamParamText(CompleteSlamParams({}), name);
-  return cmd
-      ->add_option_function<std::string>(
-          flag,
-          [&params, flag, name](const std::string& text) {
-            try {
-              SetSlamParam(params, name, text);
-            } catch (const Error& e) {
-              throw CLI::ValidationError(flag, e.what());
-            }
-          },
-          help + " (default " + value + ")")
+// its default) without it; a switch sets it to `value`. Its value is checked here, so that the
+// error names the flag; the parameters together are checked again by ParamsFrom.
+void AddParamOption(CLI::App* cmd, proto::SlamParams& params, const SlamFlag& f) {
+  const auto set = [&params, f](const std::string& text) {
+    try {
+      CheckParam(f.param, text);
+      SetSlamParam(params, f.param, text);
+    } catch (const Error& e) {
+      throw CLI::ValidationError(f.flag, e.what());
+    }
+  };
+  if (!f.value.empty()) {
+    cmd->add_flag_function(
+        f.flag, [set, value = f.value](std::int64_t) { set(value); }, f.help);
+    return;
+  }
+  const std::string value = SlamParamText(CompleteSlamParams({}), f.param);
+  cmd->add_option_function<std::string>(f.flag, set, f.help + " (default " + value + ")")
       ->type_name(TypeName(value));
 }
 
-// The flags of the SLAM parameters users tune most; --param and --config reach every one.
+// The flags of the SLAM parameters users tune most: those of every run, then each method's.
 void AddSlamParamOptions(CLI::App* cmd, SlamArgs& a) {
   proto::SlamParams& p = a.params;
-  AddParamOption(cmd, p, "--method", "method", "SLAM method: rss, paper 002's reduced search space")
-      ->check(CLI::IsMember(SlamMethodNames()));
-  AddParamOption(cmd, p, "--seed", "seed", "random seed, of the simulation too");
-  AddParamOption(cmd, p, "--max-scans", "max_scans",
-                 "map only the first N scans, 0: all (with --world, simulate only those)");
-  cmd->add_flag_function(
-      "--lenient", [&p](std::int64_t) { p.set_lenient(true); },
-      "skip malformed log lines and report how many");
-  AddParamOption(cmd, p, "--local-fitness", "rss.local.fitness",
-                 "local search fitness: eval1 (occupied cells, eq. 1) or eval2 (observations per "
-                 "occupied cell, eq. 2)")
-      ->check(CLI::IsMember({"eval1", "eval2"}));
-  AddParamOption(cmd, p, "--particles", "rss.local.particles", "local search: PSO particles")
-      ->check(CLI::Range(std::size_t{2}, kMaxLocalParticles));
-  AddParamOption(cmd, p, "--local-iterations", "rss.local.iterations",
-                 "local search: PSO iterations per scan")
-      ->check(CLI::Range(std::size_t{1}, kMaxLocalIterations));
-  AddParamOption(cmd, p, "--resolution", "rss.map.cell_size_m", "map cell size, m")
-      ->check(PositiveNumber());
-  cmd->add_flag_function(
-      "--local-only", [&p](std::int64_t) { SetSlamParam(p, "rss.global.enabled", "false"); },
-      "local search alone: no loop detection, no global search");
-  AddParamOption(cmd, p, "--global-every", "rss.global.every_scans",
-                 "K: a global search every K scans besides those on loops (0: on loops only)");
-  AddParamOption(cmd, p, "--partitions", "rss.global.partitions",
-                 "L: partitions of a global search's stretch")
-      ->check(CLI::Range(std::size_t{1}, kMaxPartitions));
-  AddParamOption(cmd, p, "--generations", "rss.global.generations",
-                 "generations of each global search")
-      ->check(CLI::Range(1, 1000000));
-  AddParamOption(cmd, p, "--islands", "rss.global.islands", "islands of each global search")
-      ->check(CLI::Range(1, 4096));
-  AddParamOption(cmd, p, "--preset", "rss.global.preset",
-                 "the algorithm each island runs, as a paper's preset (docs/engine.md)")
-      ->check(CLI::IsMember(PresetNames()));
-  AddParamOption(cmd, p, "--max-stretch", "rss.global.max_stretch_scans",
-                 "scans a global search covers at most (0: the whole loop, or all since the last)");
-  AddParamOption(cmd, p, "--loop-radius", "rss.loops.revisit_radius_m",
-                 "loop detection: distance from an earlier pose that counts as a revisit, m")
-      ->check(PositiveNumber());
-  AddParamOption(cmd, p, "--min-match-score", "rss.loops.min_match_score",
-                 "loop detection: the fraction of a scan's returns that must match the earlier "
-                 "place, (0, 1]")
-      ->check(CLI::Range(0.0, 1.0));
+  std::string methods;
+  for (const std::string& name : SlamMethodNames()) methods += (methods.empty() ? "" : ", ") + name;
+  AddParamOption(cmd, p, {"--method", "method", "SLAM method: " + methods, ""});
+  AddParamOption(cmd, p, {"--seed", "seed", "random seed, of the simulation too", ""});
+  AddParamOption(cmd, p,
+                 {"--max-scans", "max_scans",
+                  "map only the first N scans, 0: all (with --world, simulate only those)", ""});
+  AddParamOption(cmd, p,
+                 {"--lenient", "lenient", "skip malformed log lines and report how many", "true"});
+  for (const std::string& name : SlamMethodNames()) {
+    for (const SlamFlag& f : FindSlamMethod(name).Flags()) AddParamOption(cmd, p, f);
+  }
   cmd->add_option("--param", a.assigns,
                   "NAME=VALUE: any SLAM parameter by its dotted name (docs/configuration.md), the "
                   "method's prefix optional, e.g. local.particles=20; applied after the flags")
@@ -186,9 +162,7 @@ void Run(const SlamArgs& a) {
   }
 
   ServiceSession session(a.run.service,
-                         ChooseEmbeddedLayout(complete.rss().global().enabled()
-                                                  ? complete.rss().global().islands()
-                                                  : 1,
+                         ChooseEmbeddedLayout(FindSlamMethod(complete.method()).Islands(complete),
                                               a.run.workers, a.run.threads));
   ServiceClient& client = session.client();
   proto::JobSpec spec;

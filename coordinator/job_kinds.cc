@@ -3,7 +3,7 @@
 #include <string>
 
 #include "common/localization/localize_params.h"
-#include "common/slam/slam_params.h"
+#include "common/slam/methods/slam_methods.h"
 #include "common/util/error.h"
 #include "coordinator/localize_job.h"
 #include "coordinator/slam_job.h"
@@ -30,10 +30,10 @@ void PrepareSlam(proto::JobSpec& spec) {
   if (!spec.has_slam()) throw Error("a SLAM job needs its parameters (slam)");
   proto::SlamParams& slam = *spec.mutable_slam();
   if (spec.seed() != 0) slam.set_seed(spec.seed());
-  if (spec.islands() != 0) slam.mutable_rss()->mutable_global()->set_islands(spec.islands());
+  if (spec.islands() != 0) FindSlamMethod(slam.method()).SetIslands(slam, spec.islands());
   if (!slam.has_log()) slam.set_log(spec.log().name());  // the report names the log
   if (spec.max_evaluations() != 0) {
-    throw Error("a SLAM job's budget is its global searches' generations, not max_evaluations");
+    throw Error("a SLAM job's budget is its method's parameters, not max_evaluations");
   }
   if (!spec.map().sha256().empty() || !spec.map_image().sha256().empty()) {
     throw Error("a SLAM job builds its own map: it takes none");

@@ -21,7 +21,7 @@ proto::JobSpec SlamSpec() {
   proto::JobSpec spec;
   spec.set_kind(proto::JOB_KIND_SLAM);
   *spec.mutable_log() = Ref('a', "intel.clf");
-  spec.mutable_slam()->set_generations(20);
+  spec.mutable_slam()->mutable_rss()->mutable_global()->set_generations(20);
   return spec;
 }
 
@@ -41,9 +41,9 @@ TEST(JobKindsTest, ASlamJobTakesTheSpecsSeedIslandsAndLogName) {
   spec.set_islands(3);
   PrepareJobSpec(spec);
   EXPECT_EQ(spec.slam().seed(), 42u);
-  EXPECT_EQ(spec.slam().islands(), 3u);
+  EXPECT_EQ(spec.slam().rss().global().islands(), 3u);
   EXPECT_EQ(spec.slam().log(), "intel.clf");
-  EXPECT_EQ(spec.slam().generations(), 20u);
+  EXPECT_EQ(spec.slam().rss().global().generations(), 20u);
 
   // Unset in the spec, the parameters' own stay.
   spec = SlamSpec();
@@ -51,7 +51,7 @@ TEST(JobKindsTest, ASlamJobTakesTheSpecsSeedIslandsAndLogName) {
   spec.mutable_slam()->set_log("logs/intel.gfs.log");
   PrepareJobSpec(spec);
   EXPECT_EQ(spec.slam().seed(), 5u);
-  EXPECT_FALSE(spec.slam().has_islands());
+  EXPECT_FALSE(spec.slam().rss().global().has_islands());
   EXPECT_EQ(spec.slam().log(), "logs/intel.gfs.log");
 }
 
@@ -73,8 +73,8 @@ TEST(JobKindsTest, ALocalizationWithoutF2sToleranceGetsThePapersInItsSpec) {
 
 TEST(JobKindsTest, ABadSlamJobIsRefusedSayingWhatIsWrong) {
   proto::JobSpec spec = SlamSpec();
-  spec.mutable_slam()->add_sigma(0.3);
-  EXPECT_NE(Refusal(spec).find("sigma"), std::string::npos) << Refusal(spec);
+  spec.mutable_slam()->mutable_rss()->mutable_global()->set_spread_x(0.0);
+  EXPECT_NE(Refusal(spec).find("global.spread"), std::string::npos) << Refusal(spec);
   spec = SlamSpec();
   spec.mutable_slam()->set_method("gmapping");
   EXPECT_NE(Refusal(spec).find("gmapping"), std::string::npos) << Refusal(spec);

@@ -8,14 +8,14 @@
 
 namespace evoslam {
 
-// Runs a SLAM job (paper 002's RSS SLAM): the coordinator's job thread holds the map and the
-// trajectory and runs the local search and loop detection itself; each global search's islands
-// go to the workers, one task per island and epoch. Returns the job's output files. Throws
-// JobInterrupted when cancelled or shut down, Error when the job cannot run.
+// Runs a SLAM job with its method: the coordinator's job thread holds the map and the trajectory
+// and runs the method's own steps; its island searches go to the workers, one task per island
+// and epoch. Returns the job's output files. Throws JobInterrupted when cancelled or shut down,
+// Error when the job cannot run.
 std::vector<proto::ResultFile> RunSlamJob(const JobContext& context);
 
 // What every task of this job refers to: its log and its parameters, every one set (so that a
-// worker whose defaults differ rebuilds the same problem); each task adds its global search.
+// worker whose defaults differ rebuilds the same problem); each task adds its method's task.
 proto::ProblemSpec SlamProblemOf(const proto::JobSpec& spec);
 
 }  // namespace evoslam

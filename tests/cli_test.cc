@@ -299,12 +299,14 @@ TEST_F(CliTest, SlamRefusesBadFlags) {
            {"--world s-corridor --log l", "--log"},
            {"--preset de-999", "de-999"},
            {"--param bogus=1", "bogus"},
-           {"--param w1=abc", "abc"},
-           {"--param sigma=0.1,0.2", "sigma"},
+           {"--param global.occupied_pose_weight=abc", "abc"},
+           {"--param global.spread_x=0.1,0.2", "global.spread_x"},
            {"--param log=x", "--log"},
-           {"--min-match-score 0", "match score"},
-           {"--param local_min_constraint_ratio=1", "minimum constraint ratio"},
-           {"--param local_odometry_weight=-0.1", "odometry weight"},
+           {"--param local", "NAME=VALUE"},
+           {"--min-match-score 0", "match"},
+           {"--param local.odometry_below_information=1", "local.odometry_below_information"},
+           {"--param rss.local.odometry_weight=-0.1", "local.odometry_weight"},
+           {"--config " + Path("none.txt"), "none.txt"},
            {"--detach", "--coordinator"},
        }) {
     const Result r = RunCli(slam + " " + flag);
@@ -323,37 +325,79 @@ TEST_F(CliTest, SlamFlagsSetTheirParameters) {
   const Result defaults = RunCli("slam --print-params");
   ASSERT_EQ(defaults.status, 0) << defaults.output;
   EXPECT_NE(defaults.output.find("method: \"rss\""), std::string::npos) << defaults.output;
-  EXPECT_NE(defaults.output.find("local_only: false"), std::string::npos) << defaults.output;
-  EXPECT_NE(defaults.output.find("local_particles: 10\n"), std::string::npos) << defaults.output;
+  EXPECT_NE(defaults.output.find("enabled: true"), std::string::npos) << defaults.output;
+  EXPECT_NE(defaults.output.find("particles: 10\n"), std::string::npos) << defaults.output;
+  EXPECT_EQ(defaults.output.find("log:"), std::string::npos) << defaults.output;
   const Result set = RunCli(
       "slam --print-params --log run.clf --particles 12 --local-fitness eval2 --local-only "
       "--global-every 0 --partitions 4 --generations 7 --islands 3 --preset de-000 "
       "--max-stretch 90 --loop-radius 1.5 --min-match-score 0.7 --resolution 0.1 "
       "--local-iterations 20 --max-scans 50 --seed 9 --lenient "
-      "--param sigma=0.2,0.2,0.25 --param w2=0.25");
+      "--param global.spread_theta=0.25 --param rss.global.loop_miss_weight=0.25");
   ASSERT_EQ(set.status, 0) << set.output;
-  for (const char* line : {"log: \"run.clf\"",
-                           "local_particles: 12",
-                           "local_fitness: \"eval2\"",
-                           "local_only: true",
-                           "global_every: 0",
+  for (const char* line : {"particles: 12",
+                           "fitness: \"eval2\"",
+                           "enabled: false",
+                           "every_scans: 0",
                            "partitions: 4",
                            "generations: 7",
                            "islands: 3",
                            "preset: \"de-000\"",
-                           "max_stretch: 90",
+                           "max_stretch_scans: 90",
                            "revisit_radius_m: 1.5",
                            "min_match_score: 0.7",
-                           "resolution_m: 0.1",
-                           "local_iterations: 20",
+                           "cell_size_m: 0.1",
+                           "iterations: 20",
                            "max_scans: 50",
                            "seed: 9",
                            "lenient: true",
-                           "sigma: [0.2, 0.2, 0.25]",
-                           "w2: 0.25",
-                           "w1: 0.5"}) {
+                           "spread_theta: 0.25",
+                           "spread_y: 0.3",
+                           "loop_miss_weight: 0.25",
+                           "occupied_pose_weight: 0.5"}) {
     EXPECT_NE(set.output.find(std::string(line) + "\n"), std::string::npos) << line << "\n"
                                                                             << set.output;
+  }
+}
+
+// What --print-params writes, --config reads back to the same run; flags and --param apply on
+// top of the file.
+TEST_F(CliTest, SlamConfigReadsBackWhatPrintParamsWrites) {
+  const Result printed = RunCli("slam --print-params --seed 4 --param local.particles=12");
+  ASSERT_EQ(printed.status, 0) << printed.output;
+  {
+    std::ofstream config(dir_ / "p.txt");
+    config << printed.output;
+  }
+  const std::string drive = "slam --world s-corridor --max-scans 60 --generations 5";
+  const Result plain = RunCli(drive + " --seed 4 --particles 12 --out " + Path("plain"));
+  ASSERT_EQ(plain.status, 0) << plain.output;
+  const Result configured = RunCli(drive + " --config " + Path("p.txt") + " --out " + Path("cfg"));
+  ASSERT_EQ(configured.status, 0) << configured.output;
+  EXPECT_EQ(ReadAll(dir_ / "cfg" / "trajectory.txt"), ReadAll(dir_ / "plain" / "trajectory.txt"));
+
+  const Result reprinted = RunCli("slam --print-params --config " + Path("p.txt"));
+  EXPECT_EQ(reprinted.output, printed.output);
+  const Result overridden = RunCli("slam --print-params --config " + Path("p.txt") +
+                                   " --seed 5 --param local.particles=13");
+  EXPECT_NE(overridden.output.find("seed: 5\n"), std::string::npos) << overridden.output;
+  EXPECT_NE(overridden.output.find("particles: 13\n"), std::string::npos) << overridden.output;
+
+  {
+    std::ofstream bad(dir_ / "bad.txt");
+    bad << "seed: 3\nrss {\n  local { particles: lots }\n}\n";
+  }
+  const Result refused = RunCli("slam --print-params --config " + Path("bad.txt"));
+  EXPECT_EQ(refused.status, 2) << refused.output;
+  EXPECT_NE(refused.output.find("bad.txt: line 3"), std::string::npos) << refused.output;
+}
+
+// A method that does not exist is refused with the list of those that do.
+TEST_F(CliTest, SlamRefusesAnUnknownMethodListingTheKnownOnes) {
+  for (const std::string how : {"--method gslam", "--param method=gslam"}) {
+    const Result r = RunCli("slam --print-params " + how);
+    EXPECT_EQ(r.status, 2) << how << ": " << r.output;
+    EXPECT_NE(r.output.find("rss"), std::string::npos) << how << ": " << r.output;
   }
 }
 
@@ -380,18 +424,18 @@ TEST_F(CliTest, SlamMapsASimulatedWorld) {
   EXPECT_EQ(evoslam::ReadTrajectory(dir_ / "run" / "trajectory.txt").size(), 120u);
   const evoslam::proto::SlamReport report = ReadSlamReport(dir_ / "run" / "report.json");
   EXPECT_EQ(report.scans(), 120u);
-  EXPECT_EQ(report.params().generations(), 5u);
+  EXPECT_EQ(report.params().rss().global().generations(), 5u);
   EXPECT_EQ(report.absolute_errors().poses(), 120u);
   EXPECT_LT(report.absolute_errors().rms_translation_m(),
             0.5 * report.odometry_absolute_errors().rms_translation_m());
-  EXPECT_GE(report.global_searches_size(), 2);  // every 50 scans
+  EXPECT_GE(report.rss().global_searches_size(), 2);  // every 50 scans
 
   const Result local = RunCli(slam + " --local-only --out " + Path("local"));
   ASSERT_EQ(local.status, 0) << local.output;
   const evoslam::proto::SlamReport local_report = ReadSlamReport(dir_ / "local" / "report.json");
-  EXPECT_TRUE(local_report.params().local_only());
-  EXPECT_EQ(local_report.global_searches_size(), 0);
-  EXPECT_EQ(local_report.global_evaluations(), 0u);
+  EXPECT_FALSE(local_report.params().rss().global().enabled());
+  EXPECT_EQ(local_report.rss().global_searches_size(), 0);
+  EXPECT_EQ(local_report.rss().global_evaluations(), 0u);
   EXPECT_EQ(evoslam::ReadTrajectory(dir_ / "local" / "trajectory.txt").size(), 120u);
 }
 

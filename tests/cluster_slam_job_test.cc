@@ -6,8 +6,7 @@
 #include "common/report/slam_outputs.h"
 #include "common/sim/simulator.h"
 #include "common/sim/world.h"
-#include "common/slam/rss_slam.h"
-#include "common/slam/slam_params.h"
+#include "common/slam/methods/slam_methods.h"
 #include "tests/service_fixture.h"
 
 namespace evoslam::service_test {
@@ -48,16 +47,18 @@ class SlamJobTest : public ServiceTest {
     p.set_log("drive.clf");
     p.set_seed(kSeed);
     p.mutable_rss()->mutable_global()->set_islands(2);
-    p.mutable_rss()->mutable_global()->set_generations(20);  // two epochs: migrants travel between them
+    p.mutable_rss()->mutable_global()->set_generations(
+        20);  // two epochs: migrants travel between them
     p.mutable_rss()->mutable_global()->set_partitions(4);
     p.mutable_rss()->mutable_global()->set_every_scans(static_cast<std::uint32_t>(Scans(100)));
-    p.mutable_rss()->mutable_loops()->set_check_interval_scans(1);  // the drive's one revisit lasts a few scans
+    p.mutable_rss()->mutable_loops()->set_check_interval_scans(
+        1);  // the drive's one revisit lasts a few scans
     // Ten times 002's PSO iterations: the local search then lasts about a second, a window wide
     // enough for a test to catch the job part-way between its polls.
     p.mutable_rss()->mutable_local()->set_iterations(300);
     // A local search of one fixed cube per step, unrefined, leaves the revisit off the map, and its
     // match, not distinct enough to be trusted in a real run, is let through: here it only has to
-    // start a loop's search, whose tasks the service must run as RunRssSlam does.
+    // start a loop's search, whose tasks the service must run as the method does in process.
     p.mutable_rss()->mutable_local()->set_recentres(0);
     p.mutable_rss()->mutable_local()->set_heading_range_per_turn(0.0);
     p.mutable_rss()->mutable_local()->set_heading_range_per_correction(0.0);
@@ -66,14 +67,15 @@ class SlamJobTest : public ServiceTest {
     return p;
   }
 
-  // The job's files as RunRssSlam makes them in this process, its global searches on local
+  // The job's files as its method makes them in this process, its island searches on local
   // threads: what the service must hand back.
   fs::path SlamReference() {
     const fs::path out = dir_ / "slam-reference";
     const evoslam::Dataset drive = evoslam::ReadCarmen(DriveLog());
-    const evoslam::RssSlamResult result =
-        evoslam::RunRssSlam(drive, Params());
-    EXPECT_FALSE(result.global_searches.empty()) << "no global search: the job sends no task";
+    const evoslam::SlamResult result =
+        evoslam::FindSlamMethod(Params().method()).Run(drive, Params(), {});
+    EXPECT_GT(result.method_report.rss().global_searches_size(), 0)
+        << "no global search: the job sends no task";
     if (kScaleDown == 1) {
       EXPECT_FALSE(result.loops.empty()) << "no loop: none is searched";
     }
@@ -98,7 +100,7 @@ class SlamJobTest : public ServiceTest {
     *spec.mutable_relations() = client.Upload(relations.empty() ? DriveRelations() : relations);
     *spec.mutable_slam() = params;
     spec.mutable_slam()->clear_seed();
-    spec.mutable_slam()->clear_islands();
+    spec.mutable_slam()->mutable_rss()->mutable_global()->clear_islands();
     spec.set_seed(kSeed);
     spec.set_islands(2);
     return client.Submit(spec);
@@ -113,7 +115,7 @@ class SlamJobTest : public ServiceTest {
   }
 };
 
-TEST_F(SlamJobTest, OnTwoWorkerProcessesItWritesWhatRunRssSlamWritesInProcess) {
+TEST_F(SlamJobTest, OnTwoWorkerProcessesItWritesWhatTheMethodWritesInProcess) {
   const fs::path reference = SlamReference();
   const CoordinatorProcess c = StartCoordinator("coordinator");
   const std::vector<ChildProcess*> workers = {&StartWorker("worker1", c.workers),

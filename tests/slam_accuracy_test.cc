@@ -22,9 +22,9 @@
 #include "common/sensor/odometry_stalls.h"
 #include "common/sim/simulator.h"
 #include "common/sim/world.h"
-#include "common/slam/global_search_problem.h"
-#include "common/slam/local_search.h"
-#include "common/slam/rss_slam.h"
+#include "common/slam/rss/global_search_problem.h"
+#include "common/slam/rss/local_search.h"
+#include "common/slam/rss/rss_slam.h"
 #include "common/slam/slam_testing.h"
 
 namespace evoslam {
@@ -71,8 +71,8 @@ TEST(LocalSearchAccuracyTest, CorrectsDriftingOdometryOnARealisticRoute) {
 // a wall leave its hits a foot or more apart, and a corner hides the wall ahead from the scans
 // before; eq. 1 counts a return in such a gap as a new cell, so every step is pulled back onto
 // the hits already there. Left free, the edge of the space the rays have crossed pulls nothing
-// (docs/rss_slam.md). The steps' second swarm (hedged_shift) also lowers this loss, and the edge
-// then gains less; it is off here so that the test measures the edge alone.
+// (docs/methods/rss.md). The steps' second swarm (second_swarm_above_rad) also lowers this loss,
+// and the edge then gains less; it is off here so that the test measures the edge alone.
 TEST(LocalSearchAccuracyTest, WithSparseBeamsTheSeenSpacesEdgeLeftFreeStopsTheStepsFallingShort) {
   double counted = 0.0, free = 0.0;
   for (const std::uint64_t seed : {1, 2, 3}) {
@@ -98,7 +98,7 @@ TEST(LocalSearchAccuracyTest, WithSparseBeamsTheSeenSpacesEdgeLeftFreeStopsTheSt
 // millimetres a step: eq. 1 under range noise places a step to about a cell, worse than the
 // odometer, and those errors add up along the hallway. Weighing the prediction as a twentieth of
 // the scan's best-constrained direction keeps the steps near the odometer's and lets the map
-// pull back only what accumulates (docs/rss_slam.md).
+// pull back only what accumulates (docs/methods/rss.md).
 TEST(LocalSearchAccuracyTest, WeighingAGoodOdometerAgainstANoisyLaserKeepsTheStepsOnIt) {
   double alone = 0.0, weighed = 0.0;
   for (const std::uint64_t seed : {1, 2}) {
@@ -146,7 +146,8 @@ std::size_t LargestStretch(const Dataset& d, Change change) {
 // returns the clean drive's error.
 double ExpectTheStallCostsNothing(const Dataset& clean, const Dataset& stalled) {
   const LocalSearchParams params;
-  HitCountGrid clean_map = EmptyMapFor(clean, {}, params), stalled_map = EmptyMapFor(stalled, {}, params);
+  HitCountGrid clean_map = EmptyMapFor(clean, {}, params),
+               stalled_map = EmptyMapFor(stalled, {}, params);
   const double clean_ate = Ate(RunLocalSearch(clean, params, 1, clean_map).trajectory, clean);
   const double stalled_ate =
       Ate(RunLocalSearch(stalled, params, 1, stalled_map).trajectory, stalled);
@@ -291,10 +292,10 @@ TEST(RssSlamAccuracyTest, MapsTheOfficeClusterFromDriftingOdometry) {
   EXPECT_GE(slam.global_searches.size(), 3u);
   EXPECT_LT(slam_ate, odometry_ate / 3) << "odometry " << odometry_ate << " m, SLAM " << slam_ate;
   // The goal is a third of the local search's error; here the local search leaves under
-  // a third of one 6 cm cell, which neither eq. 1 nor eq. 6 can see below (docs/rss_slam.md). The
-  // global searches must at least not undo it: odometry 2.92 m, local 0.017 m, 0.016 m with them
-  // when this was written (no loop found; two of the three searches sharpened the map by the 1 %
-  // a correction without a loop needs and were applied). With 5 cm cells none was, and local and
+  // a third of one 6 cm cell, which neither eq. 1 nor eq. 6 can see below (docs/methods/rss.md).
+  // The global searches must at least not undo it: odometry 2.92 m, local 0.017 m, 0.016 m with
+  // them when this was written (no loop found; two of the three searches sharpened the map by the 1
+  // % a correction without a loop needs and were applied). With 5 cm cells none was, and local and
   // whole run both ended at 0.021 m; the first two, applied regardless, each about 0.2 % sharper,
   // had taken the error from 0.037 to 0.116 m before the alignment.
   EXPECT_LT(slam_ate, 1.2 * local_ate)
@@ -311,10 +312,9 @@ void UseFixedCube(LocalSearchParams& local) {
 
 // With a 4 m laser the office cluster's hallway and look-alike offices match well in many
 // places, and the local search drifts enough for revisits not to fit. The tests on it take the
-// local search that keeps no prediction where the scan fixes nothing (local_min_constraint_ratio
-// 0), which drifts more along the hallway: with the default, the whole run ends at 0.21 against
-// 0.30 m, but one loop found ends 0.50 m off along the hallway. Its match is right; the place it
-// matched holds a 0.46 m slip of the local search (docs/accuracy-history.md).
+// local search that keeps no prediction where the scan fixes nothing
+// (local.odometry_below_information 0), which drifts more along the hallway and so leaves the
+// loop detection more to tell apart.
 Dataset AmbiguousDrive() {
   SimulationOptions sim;
   sim.laser.beams = 181;
@@ -324,7 +324,7 @@ Dataset AmbiguousDrive() {
 }
 
 // Without the distinctness test, loops 0.6 to 0.9 m from the truth got through here; with it,
-// what gets through is a match blurred along a corridor, not another place (docs/rss_slam.md).
+// what gets through is a match blurred along a corridor, not another place (docs/methods/rss.md).
 TEST(LoopDetectionAccuracyTest, NoLoopFoundOnAnAmbiguousDriveIsAnotherPlace) {
   const Dataset d = AmbiguousDrive();
   RssSlamParams params;
@@ -356,9 +356,7 @@ std::optional<RealLog> ReadRealLog(const std::string& name) {
 // log), scored against the relations that fall within them. With 002's fixed cube the local
 // search turns a few fast turns short, and the global searches close the loops that leaves open.
 // With the heading's range growing with the turn, on 6 cm cells, the local search alone does
-// about as well, and the global searches must not undo it: when this was written, fixed cube
-// 0.076 m alone and 0.0166 m with the global searches, wide cube 0.0181 m either way (on 5 cm
-// cells the wide cube's local search alone left more for them to close, docs/accuracy-history.md).
+// about as well, and the global searches must not undo it.
 TEST(RssSlamAccuracyTest, OnTheIntelLabTheGlobalSearchesHalveTheFixedCubesError) {
   const std::optional<RealLog> intel = ReadRealLog("intel");
   if (!intel) GTEST_SKIP() << "real data absent from " << EVOSLAM_DATA_DIR;
@@ -452,7 +450,8 @@ TEST(RssSlamAccuracyTest, OnAcesReadingTheCountsAlignsNeighbouringScansCloser) {
     params.mutable_local()->mutable_refine()->set_wall_share(wall_share);
     double sum = 0.0;
     for (std::uint64_t seed = 1; seed <= 4; ++seed) {
-      const RelationErrors e = ComputeRelationErrors(testing::RunRss(d, params, seed).trajectory, near);
+      const RelationErrors e =
+          ComputeRelationErrors(testing::RunRss(d, params, seed).trajectory, near);
       EXPECT_GT(e.relations, 1000u);
       sum += e.translation_mean;
     }

@@ -6,9 +6,7 @@
 #include "common/engine/island.h"
 #include "common/localization/localizer.h"
 #include "common/service/job_inputs.h"
-#include "common/slam/rss_slam.h"
-#include "common/slam/slam_params.h"
-#include "common/slam/slam_proto.h"
+#include "common/slam/methods/slam_methods.h"
 #include "common/util/error.h"
 
 namespace evoslam {
@@ -59,24 +57,6 @@ void Remember(std::list<std::pair<std::string, std::shared_ptr<const T>>>& list,
   list.emplace_front(std::move(key), std::move(value));
   if (list.size() > kInputsKept) list.pop_back();
 }
-
-// A global search as the coordinator built it, with the poses and the base map it refers to.
-// Its members refer to one another: it is built in place and never moved.
-struct GlobalSearchOnBase {
-  GlobalSearchOnBase(const Dataset& dataset, const proto::ProblemSpec& spec)
-      : params(CompleteSlamParams(spec.slam()).rss()),
-        task(GlobalSearchTaskFromProto(spec.global_search(), poses)),
-        base(BaseMapFor(dataset, poses, task.first, task.last, params)),
-        problem(MakeGlobalSearchProblem(dataset, task, params.global(), base)) {}
-  GlobalSearchOnBase(const GlobalSearchOnBase&) = delete;
-  GlobalSearchOnBase& operator=(const GlobalSearchOnBase&) = delete;
-
-  RssSlamParams params;
-  std::vector<Pose2> poses;  // filled by task's initialiser, which comes after
-  GlobalSearchTask task;
-  HitCountGrid base;
-  GlobalSearchProblem problem;
-};
 
 }  // namespace
 
@@ -143,13 +123,12 @@ std::shared_ptr<const Problem> TaskExecutor::SlamProblem(const proto::Task& task
     log = std::make_shared<const Dataset>(LoadJobLog(*files_, spec.log(), spec.slam().lenient()));
     Remember(logs_, log_key, log);
   }
-  if (spec.global_search().last() > log->scans.size()) {
-    throw Error("task " + task.task_id() + ": a global search up to scan " +
-                std::to_string(spec.global_search().last()) + " of a log of " +
-                std::to_string(log->scans.size()) + " scans");
+  std::shared_ptr<const Problem> problem;
+  try {
+    problem = FindSlamMethod(spec.slam().method()).TaskProblem(*log, spec);
+  } catch (const Error& e) {
+    throw Error("task " + task.task_id() + ": " + e.what());
   }
-  auto search = std::make_shared<const GlobalSearchOnBase>(*log, spec);
-  std::shared_ptr<const Problem> problem(search, &search->problem);
   Remember(problems_, std::move(key), problem);
   return problem;
 }

@@ -15,9 +15,9 @@
 #include "common/io/carmen_writer.h"
 #include "common/sim/simulator.h"
 #include "common/sim/world.h"
-#include "common/slam/rss_slam.h"
-#include "common/slam/slam_params.h"
-#include "common/slam/slam_proto.h"
+#include "common/slam/methods/slam_methods.h"
+#include "common/slam/rss/rss_proto.h"
+#include "common/slam/rss/rss_slam.h"
 #include "common/util/sha256.h"
 #include "common/util/temp_dir.h"
 
@@ -128,7 +128,10 @@ TEST_F(SlamTaskTest, ATaskThatDoesNotFitItsLogComesBackAsAnError) {
        "a global search up to scan 160 of a log of 80 scans"},
       {[](proto::ProblemSpec& p) { p.mutable_global_search()->set_first(60); }, "scans [60, 60)"},
       {[](proto::ProblemSpec& p) { p.clear_global_search(); }, "is not one this worker knows"},
-      {[](proto::ProblemSpec& p) { p.mutable_slam()->set_partitions(0); }, "partition"},
+      {[](proto::ProblemSpec& p) {
+         p.mutable_slam()->mutable_rss()->mutable_global()->set_partitions(0);
+       },
+       "partition"},
   };
   TaskExecutor executor(files_);
   for (const auto& [change, says] : cases) {

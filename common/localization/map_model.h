@@ -6,8 +6,8 @@
 #include <variant>
 
 #include "common/grid/occupancy_grid.h"
+#include "common/line_map/line_map.h"
 #include "common/localization/range_renderer.h"
-#include "common/mapping/line_map.h"
 
 namespace evoslam {
 

@@ -4,8 +4,8 @@
 #include <span>
 #include <vector>
 
+#include "common/line_map/line_map.h"
 #include "common/localization/range_renderer.h"
-#include "common/mapping/line_map.h"
 
 namespace evoslam {
 

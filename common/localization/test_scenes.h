@@ -1,7 +1,7 @@
 #ifndef EVOSLAM_COMMON_LOCALIZATION_TEST_SCENES_H_
 #define EVOSLAM_COMMON_LOCALIZATION_TEST_SCENES_H_
 
-#include "common/mapping/line_map.h"
+#include "common/line_map/line_map.h"
 #include "common/sensor/dataset.h"
 #include "common/sensor/laser_scan.h"
 

@@ -12,7 +12,7 @@
 namespace evoslam {
 
 // The version of proto/evoslam/service.proto this build speaks; every envelope carries it.
-inline constexpr std::uint32_t kProtocolVersion = 1;
+inline constexpr std::uint32_t kProtocolVersion = 2;
 
 // A frame refused at the door, with the code the reply carries.
 class ProtocolError : public Error {

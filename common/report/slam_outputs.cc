@@ -1,7 +1,5 @@
 #include "common/report/slam_outputs.h"
 
-#include <spdlog/spdlog.h>
-
 #include <span>
 #include <string>
 
@@ -19,12 +17,8 @@
 namespace evoslam {
 namespace {
 
-// Room around the scans' extent, as for a grid built from a log for localization, so that the
-// outermost returns' cells do not touch the map's edge.
-constexpr double kMapMargin = 1.0;
-
 // MakeSlamReport has checked that the poses do not outnumber the scans.
-void CheckResult(const RssSlamResult& result) {
+void CheckResult(const SlamResult& result) {
   const std::size_t n = result.trajectory.size();
   if (n == 0) throw Error("SLAM outputs: the result has no poses");
   for (const LoopClosure& loop : result.loops) {
@@ -37,26 +31,9 @@ void CheckResult(const RssSlamResult& result) {
   }
 }
 
-// The map at `resolution`, or as much coarser as it takes to fit: the search's map has room for
-// more cells than an output map, and a run must not be lost for want of a fine picture of it.
-OccupancyGrid GridAtPoses(const Dataset& dataset, std::span<const StampedPose> trajectory,
-                          double resolution) {
-  std::vector<Pose2> poses;
-  poses.reserve(trajectory.size());
-  for (const StampedPose& p : trajectory) poses.push_back(p.pose);
-  const std::span<const LaserScan> scans = std::span(dataset.scans).first(poses.size());
-  const double fitting = OccupancyGrid::FittingResolution(scans, poses, resolution, kMapMargin);
-  if (fitting != resolution) {
-    spdlog::warn(
-        "the map of the run does not fit in {} cells at {} m per cell; it is written at {} m",
-        OccupancyGrid::kMaxCells, resolution, fitting);
-  }
-  return OccupancyGrid::FromScans(scans, poses, fitting, kMapMargin);
-}
-
 // Drawn from the least telling up, so that the estimate hides odometry and truth where they
 // coincide, and the loops go over everything.
-void WriteMapTrajectory(OccupancyGrid grid, const Dataset& dataset, const RssSlamResult& result,
+void WriteMapTrajectory(OccupancyGrid grid, const Dataset& dataset, const SlamResult& result,
                         const std::filesystem::path& path) {
   const std::size_t n = result.trajectory.size();
   const std::vector<StampedPose> truth = ScanTruth(dataset, n);
@@ -78,7 +55,7 @@ void WriteMapTrajectory(OccupancyGrid grid, const Dataset& dataset, const RssSla
 }  // namespace
 
 std::vector<proto::ResultFile> SlamOutputs(const Dataset& dataset, const proto::SlamParams& params,
-                                           const RssSlamResult& result,
+                                           const SlamResult& result,
                                            const std::optional<NamedRelations>& relations,
                                            std::uint32_t threads) {
   proto::SlamReport report = MakeSlamReport(dataset, params, result, relations, threads);
@@ -87,11 +64,10 @@ std::vector<proto::ResultFile> SlamOutputs(const Dataset& dataset, const proto::
   const TempDir dir("evoslam-outputs");
   WriteTrajectoryText(result.trajectory, dir / "trajectory.txt");
   WriteTrajectoryTum(result.trajectory, dir / "trajectory.tum");
-  OccupancyGrid grid = GridAtPoses(dataset, result.trajectory, params.rss().map().cell_size_m());
-  report.set_map_resolution_m(grid.resolution());
-  WriteMapYaml(grid, dir / "map.yaml");
-  WriteGridPng(grid, dir / "map.png");
-  WriteMapTrajectory(std::move(grid), dataset, result, dir / "map_trajectory.png");
+  report.set_map_resolution_m(result.map.resolution());
+  WriteMapYaml(result.map, dir / "map.yaml");
+  WriteGridPng(result.map, dir / "map.png");
+  WriteMapTrajectory(result.map, dataset, result, dir / "map_trajectory.png");
 
   const std::vector<std::string> outputs = {
       "trajectory.txt", "trajectory.tum",     "map.yaml",    "map.pgm",

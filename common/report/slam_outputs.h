@@ -8,7 +8,7 @@
 #include "common/image/image.h"
 #include "common/report/localize_report.h"
 #include "common/sensor/dataset.h"
-#include "common/slam/rss_slam.h"
+#include "common/slam/slam_method.h"
 #include "evoslam/service.pb.h"
 #include "evoslam/slam.pb.h"
 
@@ -20,9 +20,7 @@ inline constexpr Rgb kLoopColor{240, 140, 0};
 
 // Everything a SLAM job hands back, as named files, in this order:
 //   trajectory.txt, trajectory.tum  the result's poses;
-//   map.yaml, map.pgm, map.png      an occupancy grid of the scans at those poses (cells of
-//                                   params.resolution_m, free where beams pass, occupied where
-//                                   they end), for map_server and as a picture;
+//   map.yaml, map.pgm, map.png      the result's map, for map_server and as a picture;
 //   map_trajectory.png              the grid with the estimate, odometry, ground truth when the
 //                                   scans have it, and each loop closure as a line between its
 //                                   two poses;
@@ -31,7 +29,7 @@ inline constexpr Rgb kLoopColor{240, 140, 0};
 // same bytes. Throws Error for a result with no poses, more poses than scans, or a loop whose
 // scans lie beyond its poses.
 std::vector<proto::ResultFile> SlamOutputs(const Dataset& dataset, const proto::SlamParams& params,
-                                           const RssSlamResult& result,
+                                           const SlamResult& result,
                                            const std::optional<NamedRelations>& relations,
                                            std::uint32_t threads);
 

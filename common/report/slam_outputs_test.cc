@@ -17,7 +17,7 @@
 #include "common/report/slam_report.h"
 #include "common/sim/simulator.h"
 #include "common/sim/world.h"
-#include "common/slam/local_search.h"
+#include "common/slam/methods/slam_methods.h"
 #include "common/slam/slam_params.h"
 #include "common/util/error.h"
 #include "common/util/scratch_dir.h"
@@ -55,32 +55,41 @@ proto::SlamParams Params() {
 
 // A run that found the true poses shifted by `offset`, one loop from scan 25 back to scan 2,
 // and applied the global search it triggered.
-RssSlamResult ResultAtTruth(const Dataset& log, const Eigen::Vector2d& offset = {0, 0}) {
-  RssSlamResult r{.trajectory = {},
-                  .loops = {},
-                  .global_searches = {},
-                  .map = EmptyMapFor(log, proto::RssMap{}, LocalSearchParams{}),
-                  .times = {},
-                  .odometry_stalls = {}};
+SlamResult ResultAtTruth(const Dataset& log, const Eigen::Vector2d& offset = {0, 0},
+                         double cell_size = 0.05) {
+  std::vector<StampedPose> trajectory;
   for (const LaserScan& s : log.scans) {
     const Pose2 pose(s.true_pose->translation() + offset, s.true_pose->theta());
-    r.trajectory.push_back({s.timestamp, pose});
-    r.map.AddScan(s, pose);
+    trajectory.push_back({s.timestamp, pose});
   }
+  OccupancyGrid map = OccupancyGridAtPoses(log, trajectory, cell_size);
+  SlamResult r{.trajectory = std::move(trajectory),
+               .map = std::move(map),
+               .loops = {},
+               .odometry_stalls = {},
+               .seconds = 0.0,
+               .evaluations = 0,
+               .method_report = {}};
   const LoopConstraint loop{2, 25, r.trajectory[2].pose.inverse() * r.trajectory[25].pose};
   r.loops.push_back({loop, 0.8, 0.15});
-  GlobalSearchRecord search{.first = 2, .last = 26, .loop = r.loops.front()};
-  search.applied = true;
-  search.evaluations = 700;
-  search.seconds = 0.5;
-  search.before[0] = -3.0;
-  search.before[1] = 1.5;
-  search.after[0] = -3.25;
-  search.after[1] = 0.0;
-  r.global_searches.push_back(search);
-  r.local_evaluations = 9000;
-  r.global_evaluations = 700;
-  r.times = {.local = 1.0, .detection = 0.25, .global = 0.5, .total = 1.875};
+  r.seconds = 1.875;
+  r.evaluations = 9700;
+  proto::RssRunReport& rss = *r.method_report.mutable_rss();
+  rss.set_local_evaluations(9000);
+  rss.set_global_evaluations(700);
+  rss.mutable_times()->set_local_s(1.0);
+  rss.mutable_times()->set_detection_s(0.25);
+  rss.mutable_times()->set_global_s(0.5);
+  rss.mutable_times()->set_total_s(1.875);
+  proto::GlobalSearchRecord& search = *rss.add_global_searches();
+  search.set_first(2);
+  search.set_last(26);
+  search.set_loop(true);
+  search.set_applied(true);
+  search.set_evaluations(700);
+  search.set_seconds(0.5);
+  for (double v : {-3.0, 1.5}) search.add_before(v);
+  for (double v : {-3.25, 0.0}) search.add_after(v);
   return r;
 }
 
@@ -105,7 +114,7 @@ class SlamOutputsTest : public ::testing::Test {
   }
 
   const Dataset log_ = SimulatedLog();
-  const RssSlamResult result_ = ResultAtTruth(log_);
+  const SlamResult result_ = ResultAtTruth(log_);
   testing::ScratchDir dir_;
 };
 
@@ -189,7 +198,7 @@ TEST_F(SlamOutputsTest, MapPngIsTheGridCellForCell) {
 
 TEST_F(SlamOutputsTest, MapTrajectoryShowsEveryTrajectoryAndTheLoops) {
   // Shifted across the straight route, so that the estimate does not hide the truth.
-  RssSlamResult shifted = ResultAtTruth(log_, {0.0, 0.6});
+  SlamResult shifted = ResultAtTruth(log_, {0.0, 0.6});
   Write(SlamOutputs(log_, Params(), shifted, std::nullopt, 2));
   const Image image = ReadPng(dir_ / "map_trajectory.png");
   EXPECT_GE(std::max(image.width(), image.height()), 1590);
@@ -214,10 +223,11 @@ TEST_F(SlamOutputsTest, ReportJsonHoldsTheRunAndItsErrors) {
   EXPECT_EQ(r.params().rss().global().partitions(), 8u);
   EXPECT_TRUE(r.params().rss().loops().has_min_match_score());
   EXPECT_EQ(r.scans(), kScans);
-  EXPECT_EQ(r.local_evaluations(), 9000u);
-  EXPECT_EQ(r.global_evaluations(), 700u);
-  EXPECT_DOUBLE_EQ(r.times().detection_s(), 0.25);
-  EXPECT_DOUBLE_EQ(r.times().total_s(), 1.875);
+  EXPECT_EQ(r.evaluations(), 9700u);
+  EXPECT_DOUBLE_EQ(r.seconds(), 1.875);
+  EXPECT_EQ(r.rss().local_evaluations(), 9000u);
+  EXPECT_EQ(r.rss().global_evaluations(), 700u);
+  EXPECT_DOUBLE_EQ(r.rss().times().detection_s(), 0.25);
   EXPECT_DOUBLE_EQ(r.scans_per_second(), kScans / 1.875);
   EXPECT_EQ(r.threads(), 2u);
   EXPECT_NEAR(r.log_duration_s(), (kScans - 1) * SimulationOptions{}.scan_interval, 1e-6);
@@ -232,8 +242,8 @@ TEST_F(SlamOutputsTest, ReportJsonHoldsTheRunAndItsErrors) {
   EXPECT_DOUBLE_EQ(r.loops(0).relative(2), relative.theta());
   EXPECT_DOUBLE_EQ(r.loops(0).score(), 0.8);
   EXPECT_DOUBLE_EQ(r.loops(0).distinctness(), 0.15);
-  ASSERT_EQ(r.global_searches_size(), 1);
-  const auto& g = r.global_searches(0);
+  ASSERT_EQ(r.rss().global_searches_size(), 1);
+  const auto& g = r.rss().global_searches(0);
   EXPECT_EQ(g.first(), 2u);
   EXPECT_EQ(g.last(), 26u);
   EXPECT_TRUE(g.loop());
@@ -304,8 +314,8 @@ TEST_F(SlamOutputsTest, SummarySaysWhatRanWhatItFoundAndHowWell) {
            "refined below a cell",
            "global search: on a loop or every 300 steps, 8 partitions, 1 return in 2 scored, 2 "
            "islands of mu+lambda-002 x 100 generations",
-           "time 1.88 s: local search 1.00 s, loop detection 0.25 s, global search 0.50 s "
-           "(16.00 scans/s, 2 threads)",
+           "time 1.88 s (16.00 scans/s, 2 threads)",
+           "phases: local search 1.00 s, loop detection 0.25 s, global search 0.50 s",
            "fitness evaluations: 9000 local, 700 global",
            "loops found: 1 (scan 25 back to 2, score 0.80, distinctness 0.15)",
            "global searches: 1, 1 applied",
@@ -319,7 +329,7 @@ TEST_F(SlamOutputsTest, SummarySaysWhatRanWhatItFoundAndHowWell) {
 }
 
 TEST_F(SlamOutputsTest, TheReportAndSummaryNameWhereTheOdometryStalled) {
-  RssSlamResult result = ResultAtTruth(log_);
+  SlamResult result = ResultAtTruth(log_);
   result.odometry_stalls = {
       {.first = 4, .last = 7, .catch_up = Pose2(0.8, 0.1, -0.5)},
       {.first = 12, .last = 12, .catch_up = Pose2(0.0, 0.0, 1.5)},
@@ -357,37 +367,25 @@ TEST_F(SlamOutputsTest, SummarySaysWhenTheSeenSpacesEdgeIsLeftFree) {
       << s;
 }
 
-// A run that spans more than a map of 5 cm cells can hold (2^26 cells, 8192 on a side, 410 m)
-// still hands back everything, the map at 10 cm, and says so.
-TEST_F(SlamOutputsTest, ARunTooWideForTheMapsCellsGetsACoarserMap) {
-  Write(SlamOutputs(log_, Params(), result_, std::nullopt, 1));
-  EXPECT_DOUBLE_EQ(ReadReport().map_resolution_m(), 0.05);
-
-  RssSlamResult wide = result_;
-  const Pose2 far(405.0, 405.0, 0.0);
-  wide.trajectory.back().pose = far;
-  const auto files = Write(SlamOutputs(log_, Params(), wide, std::nullopt, 1));
-  EXPECT_EQ(files.size(), 8u);
+// The map written is the result's, at its resolution.
+TEST_F(SlamOutputsTest, TheMapWrittenIsTheResults) {
+  const SlamResult coarse = ResultAtTruth(log_, {0, 0}, 0.1);
+  Write(SlamOutputs(log_, Params(), coarse, std::nullopt, 1));
+  EXPECT_DOUBLE_EQ(ReadReport().map_resolution_m(), 0.1);
   const OccupancyGrid map = ReadMapYaml(dir_ / "map.yaml");
   EXPECT_DOUBLE_EQ(map.resolution(), 0.1);
-  for (const Eigen::Vector2d& end : ReturnPoints(log_.scans.back())) {
-    ASSERT_TRUE(map.WorldToCell(far * end)) << "every return lies on the map";
-  }
-  EXPECT_EQ(ReadTrajectory(dir_ / "trajectory.txt").back().pose.translation(), far.translation());
-  EXPECT_DOUBLE_EQ(ReadReport().map_resolution_m(), 0.1);
-  EXPECT_NE(files.at("summary.txt").find("map written at 0.10 m per cell, not 0.05"),
-            std::string::npos)
-      << files.at("summary.txt");
+  EXPECT_EQ(map.width(), coarse.map.width());
+  EXPECT_EQ(map.height(), coarse.map.height());
 }
 
 TEST_F(SlamOutputsTest, AResultThatDoesNotFitTheLogIsAnError) {
   Dataset shorter = log_;
   shorter.scans.pop_back();
   EXPECT_THROW(SlamOutputs(shorter, Params(), result_, std::nullopt, 1), Error);
-  RssSlamResult bad_loop = result_;
+  SlamResult bad_loop = result_;
   bad_loop.loops[0].constraint.later = kScans;
   EXPECT_THROW(SlamOutputs(log_, Params(), bad_loop, std::nullopt, 1), Error);
-  RssSlamResult empty = result_;
+  SlamResult empty = result_;
   empty.trajectory.clear();
   empty.loops.clear();
   EXPECT_THROW(SlamOutputs(log_, Params(), empty, std::nullopt, 1), Error);

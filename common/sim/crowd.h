@@ -5,7 +5,7 @@
 #include <span>
 #include <vector>
 
-#include "common/mapping/line_map.h"
+#include "common/line_map/line_map.h"
 #include "common/util/random.h"
 
 namespace evoslam {

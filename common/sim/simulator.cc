@@ -11,7 +11,7 @@
 #include "common/io/carmen_writer.h"
 #include "common/io/text_fields.h"
 #include "common/io/text_file_writer.h"
-#include "common/mapping/line_map.h"
+#include "common/line_map/line_map.h"
 #include "common/sim/crowd.h"
 #include "common/sim/trajectory.h"
 #include "common/util/error.h"

@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "common/mapping/segment_geometry.h"
+#include "common/line_map/segment_geometry.h"
 #include "common/transform/angle_units.h"
 #include "common/util/error.h"
 #include "common/util/finite_checks.h"

@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "common/mapping/line_map.h"
+#include "common/line_map/line_map.h"
 #include "common/sim/world.h"
 #include "common/transform/pose2.h"
 

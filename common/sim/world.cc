@@ -6,7 +6,7 @@
 #include <numbers>
 #include <utility>
 
-#include "common/mapping/segment_geometry.h"
+#include "common/line_map/segment_geometry.h"
 #include "common/util/error.h"
 
 namespace evoslam {

@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-#include "common/mapping/line_map.h"
+#include "common/line_map/line_map.h"
 
 namespace evoslam {
 

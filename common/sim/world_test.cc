@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "common/mapping/segment_geometry.h"
+#include "common/line_map/segment_geometry.h"
 #include "common/util/error.h"
 
 namespace evoslam {

@@ -7,11 +7,17 @@
 #include <span>
 
 #include "common/sensor/laser_scan.h"
-#include "common/slam/global_search_problem.h"
 #include "common/transform/pose2.h"
 #include "evoslam/slam_params.pb.h"
 
 namespace evoslam {
+
+// A place seen twice: scan `later` should sit at `relative` in scan `earlier`'s frame.
+struct LoopConstraint {
+  std::size_t earlier = 0;
+  std::size_t later = 0;
+  Pose2 relative;
+};
 
 // When the robot is back in a place it has mapped and its scan does not fit the map there: the
 // rule that starts a loop-closing global search. A revisit lies near an earlier pose, far enough

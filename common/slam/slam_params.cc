@@ -11,7 +11,6 @@
 
 #include "common/io/file_bytes.h"
 #include "common/io/text_fields.h"
-#include "common/slam/rss_slam.h"
 #include "common/util/error.h"
 
 namespace evoslam {
@@ -58,9 +57,7 @@ void SetDefaults(pb::Message& message, const pb::FieldDescriptor* only = nullptr
 // The message field of SlamParams that holds `method`'s parameters.
 const pb::FieldDescriptor& MethodField(const std::string& method) {
   const pb::FieldDescriptor* f = proto::SlamParams::descriptor()->FindFieldByName(method);
-  if (f == nullptr || f->cpp_type() != pb::FieldDescriptor::CPPTYPE_MESSAGE ||
-      std::find(SlamMethodNames().begin(), SlamMethodNames().end(), method) ==
-          SlamMethodNames().end()) {
+  if (f == nullptr || f->cpp_type() != pb::FieldDescriptor::CPPTYPE_MESSAGE) {
     std::string known;
     for (const std::string& name : SlamMethodNames()) known += (known.empty() ? "" : ", ") + name;
     throw Error("method '" + method + "' is not a SLAM method (" + known + ")");
@@ -104,8 +101,8 @@ bool SetScalar(pb::Message& m, const pb::FieldDescriptor& f, std::string_view te
 
 // The field a dotted path names below `message`, and the message that holds it (created on the
 // way); nullopt when no field has that path or it names a message.
-std::optional<std::pair<pb::Message*, const pb::FieldDescriptor*>> FindPath(
-    pb::Message& message, std::string_view path) {
+std::optional<std::pair<pb::Message*, const pb::FieldDescriptor*>> FindPath(pb::Message& message,
+                                                                            std::string_view path) {
   pb::Message* at = &message;
   while (true) {
     const std::size_t dot = path.find('.');
@@ -128,8 +125,8 @@ class FirstError : public pb::io::ErrorCollector {
  public:
   void AddError(int line, pb::io::ColumnNumber column, const std::string& message) override {
     if (text_.empty()) {
-      text_ = "line " + std::to_string(line + 1) + ", column " + std::to_string(column + 1) +
-              ": " + message;
+      text_ = "line " + std::to_string(line + 1) + ", column " + std::to_string(column + 1) + ": " +
+              message;
     }
   }
   const std::string& text() const { return text_; }
@@ -140,26 +137,29 @@ class FirstError : public pb::io::ErrorCollector {
 
 }  // namespace
 
-const std::vector<std::string>& SlamMethodNames() {
-  static const std::vector<std::string> names = {"rss"};
+std::vector<std::string> SlamMethodNames() {
+  std::vector<std::string> names;
+  const pb::Descriptor& d = *proto::SlamParams::descriptor();
+  for (int i = 0; i < d.field_count(); ++i) {
+    if (d.field(i)->cpp_type() == pb::FieldDescriptor::CPPTYPE_MESSAGE) {
+      names.push_back(d.field(i)->name());
+    }
+  }
   return names;
 }
 
-void ValidateSlamParams(const proto::SlamParams& params) {
+void CheckOneMethodsParams(const proto::SlamParams& params) {
   const pb::FieldDescriptor& method = MethodField(params.method());
   const pb::Reflection& r = *params.GetReflection();
   for (const std::string& other : SlamMethodNames()) {
     const pb::FieldDescriptor& f = MethodField(other);
     if (&f != &method && r.HasField(params, &f)) {
-      throw Error("parameters of method " + other + " given to a run of method " +
-                  params.method());
+      throw Error("parameters of method " + other + " given to a run of method " + params.method());
     }
   }
-  ValidateRssSlamParams(params.rss());
 }
 
-proto::SlamParams CompleteSlamParams(const proto::SlamParams& params) {
-  ValidateSlamParams(params);
+proto::SlamParams WithDefaults(const proto::SlamParams& params) {
   proto::SlamParams complete = params;
   SetDefaults(complete, &MethodField(complete.method()));
   if (!params.has_log()) complete.clear_log();  // an input, not a parameter with a default
@@ -202,7 +202,8 @@ proto::SlamParams ReadSlamParamsFile(const std::string& path) {
   pb::TextFormat::Parser parser;
   parser.RecordErrorsTo(&errors);
   if (!parser.ParseFromString(text, &params)) {
-    throw Error(path + ": " + (errors.text().empty() ? "not a SLAM parameter file" : errors.text()));
+    throw Error(path + ": " +
+                (errors.text().empty() ? "not a SLAM parameter file" : errors.text()));
   }
   if (params.has_log()) {
     throw Error(path + ": the log is not a parameter: give it with --log");

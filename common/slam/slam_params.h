@@ -9,17 +9,18 @@
 
 namespace evoslam {
 
-// The SLAM methods a job may name, in the order --help lists them.
-const std::vector<std::string>& SlamMethodNames();
+// The SLAM methods the parameters declare: SlamParams' message fields, each named after its
+// method, in declaration order.
+std::vector<std::string> SlamMethodNames();
 
-// Throws Error naming the first parameter that is out of its range, or a method that does not
-// exist (with the list of those that do).
-void ValidateSlamParams(const proto::SlamParams& params);
+// Throws Error when params.method is no method's, listing those there are, or when the
+// parameters of another method than params.method are given.
+void CheckOneMethodsParams(const proto::SlamParams& params);
 
 // The same parameters with every field of the top level and of the method's message set to what
 // the run uses (a field left unset reads as its declared default): what report.json and
-// --print-params show. Validates them first.
-proto::SlamParams CompleteSlamParams(const proto::SlamParams& params);
+// --print-params show. The values are not checked (CompleteSlamParams does).
+proto::SlamParams WithDefaults(const proto::SlamParams& params);
 
 // Sets the parameter `name` from its text form (a number, true/false, or a string): a dotted
 // path within the method's message (local.particles for rss.local.particles) or from the top

@@ -3,10 +3,8 @@
 
 #include <cstddef>
 #include <string>
-#include <vector>
 
 #include "common/slam/loop_detector.h"
-#include "common/slam/rss_slam.h"
 #include "evoslam/slam.pb.h"
 
 namespace evoslam {
@@ -16,13 +14,6 @@ namespace evoslam {
 proto::LoopClosureRecord ToProto(const LoopClosure& loop);
 LoopClosure LoopClosureFromProto(const proto::LoopClosureRecord& record, std::size_t scans,
                                  const std::string& what);
-
-// A global search task on the wire: the stretch, the poses and the loop.
-proto::GlobalSearchSpec ToProto(const GlobalSearchTask& task);
-// The task a spec describes; its poses point into `poses`, which it fills. Throws Error when the
-// spec does not hang together (a stretch outside its poses, a loop outside the stretch).
-GlobalSearchTask GlobalSearchTaskFromProto(const proto::GlobalSearchSpec& spec,
-                                           std::vector<Pose2>& poses);
 
 }  // namespace evoslam
 

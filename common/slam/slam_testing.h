@@ -14,7 +14,7 @@
 
 #include "common/grid/hit_count_grid.h"
 #include "common/sensor/dataset.h"
-#include "common/slam/rss_slam.h"
+#include "common/slam/rss/rss_slam.h"
 
 namespace evoslam::testing {
 

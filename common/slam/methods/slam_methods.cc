@@ -1,0 +1,36 @@
+#include "common/slam/methods/slam_methods.h"
+
+#include <array>
+#include <string>
+
+#include "common/slam/rss/rss_method.h"
+#include "common/slam/slam_params.h"
+#include "common/util/error.h"
+
+namespace evoslam {
+
+const SlamMethod& FindSlamMethod(std::string_view name) {
+  static const RssMethod rss;
+  static const std::array<const SlamMethod*, 1> methods = {&rss};
+  for (const SlamMethod* method : methods) {
+    if (method->name() == name) return *method;
+  }
+  std::string known;
+  for (const SlamMethod* method : methods) {
+    known += (known.empty() ? "" : ", ") + std::string(method->name());
+  }
+  throw Error("method '" + std::string(name) + "' is not a SLAM method (" + known + ")");
+}
+
+void ValidateSlamParams(const proto::SlamParams& params) {
+  const SlamMethod& method = FindSlamMethod(params.method());
+  CheckOneMethodsParams(params);
+  method.Validate(params);
+}
+
+proto::SlamParams CompleteSlamParams(const proto::SlamParams& params) {
+  ValidateSlamParams(params);
+  return WithDefaults(params);
+}
+
+}  // namespace evoslam
