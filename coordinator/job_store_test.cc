@@ -8,7 +8,7 @@
 #include <fstream>
 
 #include "common/util/error.h"
-#include "common/util/scratch_dir.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
@@ -25,7 +25,7 @@ proto::JobSpec LocalizeSpec(std::uint64_t seed) {
 class JobStoreTest : public ::testing::Test {
  protected:
   std::filesystem::path Db() const { return dir_.path() / "coordinator.db"; }
-  evoslam::testing::ScratchDir dir_;
+  TempDir dir_;
 };
 
 TEST_F(JobStoreTest, JobsKeepTheirSpecStateAndOrderAcrossReopening) {

@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config git bzip2
-  libeigen3-dev libzmq3-dev cppzmq-dev libprotobuf-dev protobuf-compiler
+  libeigen3-dev libzmq3-dev cppzmq-dev libsodium-dev libprotobuf-dev protobuf-compiler
   libspdlog-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
   zlib1g-dev libbz2-dev libpng-dev libsqlite3-dev clang-format clang libpagmo-dev
   python3  # docs/gen-configuration.py, and the test that docs/configuration.md is fresh

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "common/io/trajectory_io.h"
-#include "common/util/scratch_dir.h"
+#include "common/util/temp_dir.h"
 #include "evoslam/slam.pb.h"
 
 namespace {
@@ -56,7 +56,7 @@ class CliTest : public ::testing::Test {
  protected:
   std::string Path(const std::string& name) const { return (dir_ / name).string(); }
 
-  evoslam::testing::ScratchDir dir_;
+  evoslam::TempDir dir_;
 };
 
 TEST_F(CliTest, SimulateThenLocalizeWritesEveryOutput) {

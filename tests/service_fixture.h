@@ -32,7 +32,6 @@
 #include "common/protocol/zmq_io.h"
 #include "common/service/service_client.h"
 #include "common/transform/angle_units.h"
-#include "common/util/scratch_dir.h"
 #include "common/util/temp_dir.h"
 #include "tests/process_testing.h"
 
@@ -565,7 +564,7 @@ class ServiceTest : public ::testing::Test {
 
   static inline evoslam::TempDir* world_ = nullptr;
   zmq::context_t context_;
-  evoslam::testing::ScratchDir dir_;
+  evoslam::TempDir dir_;
   // Destroyed before dir_ (members go in reverse order): every process is killed before its
   // folder is removed.
   std::vector<std::unique_ptr<ChildProcess>> processes_;

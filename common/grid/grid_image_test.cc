@@ -1,5 +1,5 @@
 #include "common/grid/grid_image.h"
-#include "common/util/scratch_dir.h"
+#include "common/util/temp_dir.h"
 
 #include <gtest/gtest.h>
 
@@ -35,7 +35,7 @@ TEST(GridImageTest, RenderColoursCellsWithYUp) {
 }
 
 TEST(GridImageTest, WriteGridPngReadsBack) {
-  const testing::ScratchDir dir;
+  const TempDir dir;
   const std::filesystem::path path = dir / "grid.png";
   WriteGridPng(SmallGrid(), path);
   const Image back = ReadPng(path);

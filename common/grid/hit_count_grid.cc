@@ -11,7 +11,6 @@
 #include <type_traits>
 
 #include "common/util/error.h"
-#include "common/util/finite_checks.h"
 
 namespace evoslam {
 
@@ -61,26 +60,21 @@ std::size_t GridCellSet::size() const {
 }
 
 HitCountGrid::HitCountGrid(double resolution, const Eigen::Vector2d& origin, int width, int height)
-    : resolution_(resolution), origin_(origin), width_(width), height_(height) {
-  if (!IsFinitePositive(resolution)) {
-    throw Error("hit count grid: resolution must be positive and finite");
-  }
-  if (!origin.allFinite()) throw Error("hit count grid: origin must be finite");
-  if (width <= 0 || height <= 0) throw Error("hit count grid: width and height must be positive");
+    : geometry_(resolution, origin, width, height) {
   if (static_cast<long long>(width) * height > kMaxCells) {
     throw Error("hit count grid: " + std::to_string(width) + " x " + std::to_string(height) +
                 " cells is over the limit of " + std::to_string(kMaxCells));
   }
-  counts_.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0);
+  counts_.assign(geometry_.cell_count(), 0);
   occupied_bits_.assign((counts_.size() + 63) / 64, 0);
 }
 
 std::uint32_t HitCountGrid::count(int x, int y) const {
-  if (x < 0 || y < 0 || x >= width_ || y >= height_) {
+  if (!geometry_.Contains(x, y)) {
     throw std::out_of_range("hit count grid: cell (" + std::to_string(x) + ", " +
                             std::to_string(y) + ") is outside the grid");
   }
-  return counts_[Index(x, y)];
+  return counts_[geometry_.Index(x, y)];
 }
 
 bool HitCountGrid::Add(const Eigen::Vector2d& point, int delta) {
@@ -120,8 +114,8 @@ void HitCountGrid::TrackRays() {
 
 void HitCountGrid::AddCrossings(const Eigen::Vector2d& from, const Eigen::Vector2d& to, int delta) {
   // Amanatides and Woo's traversal: from cell to cell across the nearer boundary.
-  const Eigen::Vector2d a = (from - origin_) / resolution_, b = (to - origin_) / resolution_;
-  if (!(a.x() >= 0 && a.y() >= 0 && a.x() < width_ && a.y() < height_) || !b.allFinite()) return;
+  const Eigen::Vector2d a = geometry_.ToCells(from), b = geometry_.ToCells(to);
+  if (!geometry_.ContainsCells(a.x(), a.y()) || !b.allFinite()) return;
   int x = static_cast<int>(a.x()), y = static_cast<int>(a.y());
   const int end_x = static_cast<int>(std::floor(b.x())),
             end_y = static_cast<int>(std::floor(b.y()));
@@ -133,7 +127,7 @@ void HitCountGrid::AddCrossings(const Eigen::Vector2d& from, const Eigen::Vector
   double next_x = d.x() != 0.0 ? ((d.x() > 0 ? x + 1 - a.x() : a.x() - x) * delta_x) : kNever;
   double next_y = d.y() != 0.0 ? ((d.y() > 0 ? y + 1 - a.y() : a.y() - y) * delta_y) : kNever;
   while (x != end_x || y != end_y) {
-    const std::size_t i = Index(x, y);
+    const std::size_t i = geometry_.Index(x, y);
     std::uint32_t& c = crossings_[i];
     const std::uint32_t before = c;
     c = Moved(c, delta);
@@ -147,15 +141,15 @@ void HitCountGrid::AddCrossings(const Eigen::Vector2d& from, const Eigen::Vector
       y += step_y;
       next_y += delta_y;
     }
-    if (x < 0 || y < 0 || x >= width_ || y >= height_) break;
+    if (!geometry_.Contains(x, y)) break;
   }
 }
 
 bool HitCountGrid::Frontier(std::size_t index) const {
   if (crossed_bits_.empty() || crossed(index) || occupied(index)) return false;
-  const auto w = static_cast<std::size_t>(width_);
+  const auto w = static_cast<std::size_t>(width());
   const std::size_t x = index % w, y = index / w;
-  if (x == 0 || y == 0 || x + 1 >= w || y + 1 >= static_cast<std::size_t>(height_)) return false;
+  if (x == 0 || y == 0 || x + 1 >= w || y + 1 >= static_cast<std::size_t>(height())) return false;
   for (const std::size_t n : {index - w - 1, index - w, index - w + 1, index - 1, index + 1,
                               index + w - 1, index + w, index + w + 1}) {
     if (crossed(n) && !occupied(n)) return true;
@@ -169,7 +163,7 @@ void HitCountGrid::CountInsertion(const Pose2Frame& frame, std::span<const Eigen
   // frame * p, and its cell as CellIndex finds it, to the bit.
   const Pose2& pose = frame.pose();
   const double c = frame.cos(), s = frame.sin();
-  const auto stride = static_cast<std::uint32_t>(width_);
+  const auto stride = static_cast<std::uint32_t>(width());
   // The cells of a chunk of points first, then the set: in one loop, each point's arithmetic
   // waited on the set's read-modify-write of the point before (measured: a fifth faster apart).
   constexpr std::size_t kChunk = 128;
@@ -186,10 +180,10 @@ void HitCountGrid::CountInsertion(const Pose2Frame& frame, std::span<const Eigen
     std::size_t n = 0;
     for (std::size_t i = begin; i < end; ++i) {
       const Eigen::Vector2d& p = points[i];
-      const double x = (pose.x() + c * p.x() - s * p.y() - origin_.x()) / resolution_;
-      const double y = (pose.y() + s * p.x() + c * p.y() - origin_.y()) / resolution_;
+      const double x = geometry_.CellX(pose.x() + c * p.x() - s * p.y());
+      const double y = geometry_.CellY(pose.y() + s * p.x() + c * p.y());
       // As in WorldToCell: in the grid exactly when the truncation is the floor; NaN is outside.
-      const bool in = x >= 0 && y >= 0 && x < width_ && y < height_;
+      const bool in = geometry_.ContainsCells(x, y);
       // Written whether in or not, kept only when in (and not a repeat): no branch on the point.
       const std::uint32_t cell = static_cast<std::uint32_t>(in ? y : 0.0) * stride +
                                  static_cast<std::uint32_t>(in ? x : 0.0);
@@ -232,11 +226,11 @@ HitCountGrid::WindowSums HitCountGrid::Window(int x0, int y0, int x1, int y1) co
   WindowSums sums;
   x0 = std::max(x0, 0);
   y0 = std::max(y0, 0);
-  x1 = std::min(x1, width_);
-  y1 = std::min(y1, height_);
+  x1 = std::min(x1, width());
+  y1 = std::min(y1, height());
   for (int y = y0; y < y1; ++y) {
     for (int x = x0; x < x1; ++x) {
-      const std::uint32_t c = counts_[Index(x, y)];
+      const std::uint32_t c = counts_[geometry_.Index(x, y)];
       sums.total += c;
       sums.occupied += c > 0;
     }

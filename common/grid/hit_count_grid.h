@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "common/grid/grid_geometry.h"
 #include "common/sensor/laser_scan.h"
 #include "common/transform/pose2.h"
 #include "common/transform/pose2_frame.h"
@@ -94,8 +95,7 @@ class GridCellSet {
 // The map of paper 002 (§3.1): each cell counts how many times an obstacle was observed in it.
 // The grid keeps the sum of all counts and the number of cells above zero as it changes, so the
 // paper's whole-map score (eq. 6: mean observations per occupied cell) costs nothing to read;
-// scores over a window (eqs. 1 and 2) cost the window's cells. Cell (x, y) covers
-// [origin + (x, y) * resolution, origin + (x + 1, y + 1) * resolution).
+// scores over a window (eqs. 1 and 2) cost the window's cells. The cells are a GridGeometry's.
 class HitCountGrid {
  public:
   static constexpr long long kMaxCells = 1LL << 28;
@@ -104,28 +104,21 @@ class HitCountGrid {
   // non-finite origin, a non-positive size, or more than kMaxCells cells.
   HitCountGrid(double resolution, const Eigen::Vector2d& origin, int width, int height);
 
-  double resolution() const { return resolution_; }
-  const Eigen::Vector2d& origin() const { return origin_; }
-  int width() const { return width_; }
-  int height() const { return height_; }
+  const GridGeometry& geometry() const { return geometry_; }
+  double resolution() const { return geometry_.resolution(); }
+  const Eigen::Vector2d& origin() const { return geometry_.origin(); }
+  int width() const { return geometry_.width(); }
+  int height() const { return geometry_.height(); }
 
   // The cell holding a world point; nullopt outside the grid or for a point not finite. Inline,
   // as the searches look up every end point of every candidate.
   std::optional<Eigen::Vector2i> WorldToCell(const Eigen::Vector2d& point) const {
-    const Eigen::Vector2d cell = (point - origin_) / resolution_;
-    // floor(v) lies in [0, n) exactly when v does, and there truncation is the floor; NaN fails
-    // every comparison. No call to floor.
-    if (!(cell.x() >= 0 && cell.y() >= 0 && cell.x() < width_ && cell.y() < height_)) {
-      return std::nullopt;
-    }
-    return Eigen::Vector2i(static_cast<int>(cell.x()), static_cast<int>(cell.y()));
+    return geometry_.WorldToCell(point);
   }
   // The index of the cell holding a world point (row-major: y * width + x), for callers that
   // gather cells; nullopt outside the grid.
   std::optional<std::size_t> CellIndex(const Eigen::Vector2d& point) const {
-    const auto cell = WorldToCell(point);
-    if (!cell) return std::nullopt;
-    return Index(cell->x(), cell->y());
+    return geometry_.CellIndex(point);
   }
   // Throws std::out_of_range outside the grid.
   std::uint32_t count(int x, int y) const;
@@ -189,15 +182,7 @@ class HitCountGrid {
   WindowSums Window(int x0, int y0, int x1, int y1) const;
 
  private:
-  std::size_t Index(int x, int y) const {
-    return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
-           static_cast<std::size_t>(x);
-  }
-
-  double resolution_;
-  Eigen::Vector2d origin_;
-  int width_;
-  int height_;
+  GridGeometry geometry_;
   std::vector<std::uint32_t> counts_;
   // A bit per cell, set while its count is above zero: what scoring an insertion asks of every
   // cell, in a 32nd of the memory, so that it stays in cache.

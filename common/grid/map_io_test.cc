@@ -12,7 +12,7 @@
 #include "common/image/image.h"
 #include "common/image/pgm.h"
 #include "common/util/error.h"
-#include "common/util/scratch_dir.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
@@ -52,7 +52,7 @@ class MapIoTest : public ::testing::Test {
     return InputError("", 0, "");
   }
 
-  testing::ScratchDir dir_;
+  TempDir dir_;
 };
 
 TEST_F(MapIoTest, ReadsTrinaryPgmMap) {

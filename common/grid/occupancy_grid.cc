@@ -120,16 +120,13 @@ void ThrowUnlessValidResolution(double resolution) {
 
 OccupancyGrid::OccupancyGrid(double resolution, const Eigen::Vector2d& origin, int width,
                              int height)
-    : resolution_(resolution), origin_(origin), width_(width), height_(height) {
-  ThrowUnlessValidResolution(resolution);
-  if (!origin.allFinite()) throw Error("occupancy grid: origin must be finite");
-  if (width <= 0 || height <= 0 || static_cast<long long>(width) * height > kMaxCells) {
+    : geometry_(resolution, origin, width, height) {
+  if (static_cast<long long>(width) * height > kMaxCells) {
     throw Error("occupancy grid: size " + std::to_string(width) + " x " + std::to_string(height) +
-                " must be positive and at most " + std::to_string(kMaxCells) + " cells");
+                " is over the limit of " + std::to_string(kMaxCells) + " cells");
   }
-  const std::size_t cells = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-  hits_.assign(cells, 0);
-  misses_.assign(cells, 0);
+  hits_.assign(geometry_.cell_count(), 0);
+  misses_.assign(geometry_.cell_count(), 0);
 }
 
 namespace {
@@ -213,31 +210,13 @@ double OccupancyGrid::FittingResolution(std::span<const LaserScan> scans,
   return resolution;
 }
 
-Eigen::Vector2d OccupancyGrid::max_corner() const {
-  return origin_ + resolution_ * Eigen::Vector2d(width_, height_);
-}
-
-std::optional<Eigen::Vector2i> OccupancyGrid::WorldToCell(const Eigen::Vector2d& point) const {
-  const Eigen::Vector2d cell = ((point - origin_) / resolution_).array().floor();
-  // Written so that NaN compares false and is rejected.
-  if (!(cell.x() >= 0.0 && cell.x() < width_ && cell.y() >= 0.0 && cell.y() < height_)) {
-    return std::nullopt;
-  }
-  return Eigen::Vector2i(static_cast<int>(cell.x()), static_cast<int>(cell.y()));
-}
-
-Eigen::Vector2d OccupancyGrid::CellToWorld(int x, int y) const {
-  return origin_ + resolution_ * Eigen::Vector2d(x + 0.5, y + 0.5);
-}
-
 std::size_t OccupancyGrid::Index(int x, int y) const {
   if (!Contains(x, y)) {
     throw std::out_of_range("occupancy grid: cell (" + std::to_string(x) + ", " +
-                            std::to_string(y) + ") outside " + std::to_string(width_) + " x " +
-                            std::to_string(height_));
+                            std::to_string(y) + ") outside " + std::to_string(width()) + " x " +
+                            std::to_string(height()));
   }
-  return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
-         static_cast<std::size_t>(x);
+  return geometry_.Index(x, y);
 }
 
 double OccupancyGrid::log_odds(int x, int y) const {
@@ -283,7 +262,7 @@ void OccupancyGrid::InsertScan(const LaserScan& scan, const Pose2& pose) {
     throw Error("occupancy grid: cannot insert a scan at a non-finite pose");
   }
   clearance_.clear();
-  const Eigen::Vector2d from = (pose.translation() - origin_) / resolution_;
+  const Eigen::Vector2d from = geometry_.ToCells(pose.translation());
   struct Beam {
     GridSegment cells;
     bool hit;
@@ -305,8 +284,8 @@ void OccupancyGrid::InsertScan(const LaserScan& scan, const Pose2& pose) {
     }
     const double angle = pose.theta() + scan.angle(b);
     const Eigen::Vector2d to =
-        from + (length / resolution_) * Eigen::Vector2d(std::cos(angle), std::sin(angle));
-    if (auto cells = ClipToGrid(from, to, width_, height_)) {
+        from + (length / resolution()) * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+    if (auto cells = ClipToGrid(from, to, width(), height())) {
       beams.push_back({*cells, hit && cells->ends_inside});
     }
   }
@@ -318,7 +297,7 @@ void OccupancyGrid::InsertScan(const LaserScan& scan, const Pose2& pose) {
   }
   for (const std::size_t i : hit_cells) AddHit(i);
   std::sort(hit_cells.begin(), hit_cells.end());
-  const auto w = static_cast<std::size_t>(width_);
+  const auto w = static_cast<std::size_t>(width());
   for (const Beam& beam : beams) {
     // ForEachCell stays on the grid, so the index needs no check; a cell without hits cannot be
     // one of this scan's.
@@ -332,8 +311,8 @@ void OccupancyGrid::InsertScan(const LaserScan& scan, const Pose2& pose) {
 }
 
 void OccupancyGrid::UpdateDistanceField() {
-  const int w = width_;
-  const int h = height_;
+  const int w = width();
+  const int h = height();
   const std::size_t cells = hits_.size();
   std::vector<std::uint8_t> occupied(cells);
   for (std::size_t i = 0; i < cells; ++i) occupied[i] = OccupiedAt(i) ? 1 : 0;
@@ -396,14 +375,14 @@ double OccupancyGrid::CastRay(const Eigen::Vector2d& origin, double angle, doubl
 double OccupancyGrid::CastRay(const Eigen::Vector2d& origin, const Eigen::Vector2d& direction,
                               double max_range) const {
   if (!(max_range > 0.0) || !origin.allFinite() || !direction.allFinite()) return max_range;
-  const double ox = (origin.x() - origin_.x()) / resolution_;
-  const double oy = (origin.y() - origin_.y()) / resolution_;
+  const double ox = geometry_.CellX(origin.x());
+  const double oy = geometry_.CellY(origin.y());
   const double dx = direction.x();
   const double dy = direction.y();
-  const double range = max_range / resolution_;
+  const double range = max_range / resolution();
   const double t =
       has_distance_field() ? Cast<true>(ox, oy, dx, dy, range) : Cast<false>(ox, oy, dx, dy, range);
-  return std::min(max_range, t * resolution_);
+  return std::min(max_range, t * resolution());
 }
 
 // Everything here is in cells: (ox, oy) is the ray's origin relative to the grid origin, (dx, dy)
@@ -419,18 +398,18 @@ double OccupancyGrid::Cast(double ox, double oy, double dx, double dy, double ma
   double t_exit = max_range;
   if (dx != 0.0) {
     const double a = (0.0 - ox) * inv_dx;
-    const double b = (width_ - ox) * inv_dx;
+    const double b = (width() - ox) * inv_dx;
     t_enter = std::max(t_enter, std::min(a, b));
     t_exit = std::min(t_exit, std::max(a, b));
-  } else if (ox < 0.0 || ox > width_) {
+  } else if (ox < 0.0 || ox > width()) {
     return kInf;
   }
   if (dy != 0.0) {
     const double a = (0.0 - oy) * inv_dy;
-    const double b = (height_ - oy) * inv_dy;
+    const double b = (height() - oy) * inv_dy;
     t_enter = std::max(t_enter, std::min(a, b));
     t_exit = std::min(t_exit, std::max(a, b));
-  } else if (oy < 0.0 || oy > height_) {
+  } else if (oy < 0.0 || oy > height()) {
     return kInf;
   }
   if (!(t_enter <= t_exit)) return kInf;
@@ -444,14 +423,14 @@ double OccupancyGrid::Cast(double ox, double oy, double dx, double dy, double ma
 
   const int step_x = dx > 0.0 ? 1 : -1;
   const int step_y = dy > 0.0 ? 1 : -1;
-  const std::ptrdiff_t stride = width_;
+  const std::ptrdiff_t stride = width();
   const std::ptrdiff_t step_i_y = step_y * stride;
   const double face_x = dx > 0.0 ? 1.0 : 0.0;  // offset of the face a ray leaves a cell through
   const double face_y = dy > 0.0 ? 1.0 : 0.0;
   // Cells of points on the ray are clamped so that rounding can never leave the grid; for the
   // non-negative values left after clamping, truncation is floor.
-  const double last_x = width_ - 1;
-  const double last_y = height_ - 1;
+  const double last_x = width() - 1;
+  const double last_y = height() - 1;
   int x = static_cast<int>(std::clamp(ox, 0.0, last_x));
   int y = static_cast<int>(std::clamp(oy, 0.0, last_y));
   std::ptrdiff_t i = y * stride + x;
@@ -508,8 +487,8 @@ double OccupancyGrid::Cast(double ox, double oy, double dx, double dy, double ma
       i += along_x ? step_x : step_i_y;
       next_x = along_x ? (x + face_x - ox) * inv_dx : next_x;
       next_y = along_x ? next_y : (y + face_y - oy) * inv_dy;
-      if (t >= t_exit || static_cast<unsigned>(x) >= static_cast<unsigned>(width_) ||
-          static_cast<unsigned>(y) >= static_cast<unsigned>(height_)) {
+      if (t >= t_exit || static_cast<unsigned>(x) >= static_cast<unsigned>(width()) ||
+          static_cast<unsigned>(y) >= static_cast<unsigned>(height())) {
         return kInf;
       }
       if (occupied(i)) return t_enter + t;

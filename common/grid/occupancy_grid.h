@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "common/grid/grid_geometry.h"
 #include "common/sensor/laser_scan.h"
 #include "common/transform/pose2.h"
 
@@ -32,9 +33,8 @@ inline constexpr double kFreeThreshold = 0.35;
 // lost on glass or dark surfaces, and clearing all of range_max would erase walls.
 inline constexpr double kNoReturnFreeRange = 5.0;
 
-// A 2D occupancy grid. Cell (x, y) covers [origin + (x, y) * resolution, origin + (x + 1, y + 1) *
-// resolution) in the world; x grows with world x, y with world y. Each cell counts the beams that
-// ended in it (hits) and that crossed it (misses).
+// A 2D occupancy grid over a GridGeometry. Each cell counts the beams that ended in it (hits) and
+// that crossed it (misses).
 //
 // Ray casting leaps through free space by a distance field of the occupied cells, one per
 // quadrant of ray directions (a ray heading up and right can only meet cells up and right of
@@ -63,20 +63,23 @@ class OccupancyGrid {
   static double FittingResolution(std::span<const LaserScan> scans, std::span<const Pose2> poses,
                                   double resolution, double margin);
 
-  double resolution() const { return resolution_; }
-  const Eigen::Vector2d& origin() const { return origin_; }
-  int width() const { return width_; }
-  int height() const { return height_; }
+  const GridGeometry& geometry() const { return geometry_; }
+  double resolution() const { return geometry_.resolution(); }
+  const Eigen::Vector2d& origin() const { return geometry_.origin(); }
+  int width() const { return geometry_.width(); }
+  int height() const { return geometry_.height(); }
   // World corners of the area the grid covers.
-  Eigen::Vector2d min_corner() const { return origin_; }
-  Eigen::Vector2d max_corner() const;
+  Eigen::Vector2d min_corner() const { return geometry_.origin(); }
+  Eigen::Vector2d max_corner() const { return geometry_.max_corner(); }
 
-  bool Contains(int x, int y) const { return x >= 0 && y >= 0 && x < width_ && y < height_; }
+  bool Contains(int x, int y) const { return geometry_.Contains(x, y); }
   // The cell holding a world point, or nullopt when the point is outside the grid (or not
   // finite).
-  std::optional<Eigen::Vector2i> WorldToCell(const Eigen::Vector2d& point) const;
+  std::optional<Eigen::Vector2i> WorldToCell(const Eigen::Vector2d& point) const {
+    return geometry_.WorldToCell(point);
+  }
   // The world position of a cell's centre.
-  Eigen::Vector2d CellToWorld(int x, int y) const;
+  Eigen::Vector2d CellToWorld(int x, int y) const { return geometry_.CellToWorld(x, y); }
 
   // Per-cell queries; they throw std::out_of_range outside the grid.
   std::uint32_t hits(int x, int y) const { return hits_[Index(x, y)]; }
@@ -124,10 +127,7 @@ class OccupancyGrid {
   template <bool kUseField>
   double Cast(double ox, double oy, double dx, double dy, double max_range) const;
 
-  double resolution_;
-  Eigen::Vector2d origin_;
-  int width_;
-  int height_;
+  GridGeometry geometry_;
   std::vector<std::uint32_t> hits_;
   std::vector<std::uint32_t> misses_;
   // Per cell: how far a ray starting anywhere in the cell may advance without touching an

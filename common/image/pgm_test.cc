@@ -8,7 +8,7 @@
 #include <string>
 
 #include "common/util/error.h"
-#include "common/util/scratch_dir.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
@@ -37,7 +37,7 @@ class PgmTest : public ::testing::Test {
     return "";
   }
 
-  testing::ScratchDir dir_;
+  TempDir dir_;
 };
 
 TEST_F(PgmTest, WriteReadRoundTrip) {

@@ -10,7 +10,7 @@
 
 #include "common/image/image.h"
 #include "common/util/error.h"
-#include "common/util/scratch_dir.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
@@ -31,7 +31,7 @@ class PngTest : public ::testing::Test {
         << png.message;
   }
 
-  testing::ScratchDir dir_;
+  TempDir dir_;
 };
 
 TEST_F(PngTest, RoundTripsEveryPixel) {

@@ -12,7 +12,7 @@
 
 #include "common/io/testing_files.h"
 #include "common/util/error.h"
-#include "common/util/scratch_dir.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
@@ -21,7 +21,6 @@ using io_testing::Bzip2Bytes;
 using io_testing::GzipBytes;
 using io_testing::WriteBytes;
 using ::testing::HasSubstr;
-using testing::ScratchDir;
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
@@ -45,7 +44,7 @@ std::string OdomLine(double x, double timestamp) {
   return fmt::format("ODOM {} 0 0.1 0.3 0.02 0 {:.6f} nohost {:.6f}", x, timestamp, timestamp);
 }
 
-std::filesystem::path WriteLog(const ScratchDir& dir, const std::string& text,
+std::filesystem::path WriteLog(const TempDir& dir, const std::string& text,
                                std::string_view name = "log.clf") {
   const auto path = dir / name;
   WriteBytes(path, text);
@@ -63,7 +62,7 @@ InputError ReadError(const std::filesystem::path& path) {
 }
 
 TEST(CarmenReaderTest, ReadsMessagesInLogOrder) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string log =
       "# a comment\n"
       "\n"
@@ -108,7 +107,7 @@ TEST(CarmenReaderTest, ReadsMessagesInLogOrder) {
 }
 
 TEST(CarmenReaderTest, BeamGeometrySpansTheHalfCircle) {
-  ScratchDir dir;
+  TempDir dir;
   const Dataset d = ReadCarmen(WriteLog(
       dir, FlaserLine(180, 1) + "\n" + FlaserLine(181, 2) + "\n" + FlaserLine(361, 3) + "\n"));
   ASSERT_EQ(d.scans.size(), 3u);
@@ -125,7 +124,7 @@ TEST(CarmenReaderTest, BeamGeometrySpansTheHalfCircle) {
 }
 
 TEST(CarmenReaderTest, RearLaserGoesToRearScans) {
-  ScratchDir dir;
+  TempDir dir;
   const Dataset d =
       ReadCarmen(WriteLog(dir, FlaserLine(180, 1) + "\n" + FlaserLine(181, 1.5, "RLASER") + "\n"));
   ASSERT_EQ(d.scans.size(), 1u);
@@ -136,7 +135,7 @@ TEST(CarmenReaderTest, RearLaserGoesToRearScans) {
 }
 
 TEST(CarmenReaderTest, DefaultRangeMaxMakesNoReturnMarkersNonReturns) {
-  ScratchDir dir;
+  TempDir dir;
   const Dataset d =
       ReadCarmen(WriteLog(dir, "FLASER 4 1.5 81.83 81.91 50.00 0 0 0 0 0 0 1.0 nohost 1.0\n"));
   ASSERT_EQ(d.scans.size(), 1u);
@@ -148,7 +147,7 @@ TEST(CarmenReaderTest, DefaultRangeMaxMakesNoReturnMarkersNonReturns) {
 }
 
 TEST(CarmenReaderTest, RangeMaxParamAppliesWhereverItIs) {
-  ScratchDir dir;
+  TempDir dir;
   const Dataset d =
       ReadCarmen(WriteLog(dir, FlaserLine(180, 1) + "\n" + FlaserLine(180, 2, "RLASER") +
                                    "\nPARAM laser_front_laser_max_range 20.5 nohost 0\n"
@@ -160,7 +159,7 @@ TEST(CarmenReaderTest, RangeMaxParamAppliesWhereverItIs) {
 }
 
 TEST(CarmenReaderTest, ReadsRobotLaserWithItsOwnGeometry) {
-  ScratchDir dir;
+  TempDir dir;
   // 5 beams from -45 deg every 22.5 deg, 2 remissions.
   const std::string line = fmt::format(
       "ROBOTLASER1 0 {} {} {} 30.0 0.01 0 5 1.0 2.0 3.0 4.0 5.0 2 0.5 0.6 "
@@ -183,7 +182,7 @@ TEST(CarmenReaderTest, ReadsRobotLaserWithItsOwnGeometry) {
 }
 
 TEST(CarmenReaderTest, TrueposMatchesScansByTimestampInEitherOrder) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string log = "TRUEPOS 5 6 0.7 0 0 0 1.000000 nohost 1\n" + FlaserLine(180, 1.0) +
                           "\n" + FlaserLine(180, 2.0) + "\n" + FlaserLine(180, 3.0) + "\n" +
                           "TRUEPOS -1 -2 -0.3 0 0 0 3.000000 nohost 3\n"
@@ -199,7 +198,7 @@ TEST(CarmenReaderTest, TrueposMatchesScansByTimestampInEitherOrder) {
 }
 
 TEST(CarmenReaderTest, ReadsCompressedLogsLikePlainOnes) {
-  ScratchDir dir;
+  TempDir dir;
   std::string log;
   for (int i = 0; i < 200; ++i) log += OdomLine(i, i) + "\n" + FlaserLine(181, i + 0.5) + "\n";
   const Dataset plain = ReadCarmen(WriteLog(dir, log, "log.clf"));
@@ -270,7 +269,7 @@ std::vector<MalformedCase> MalformedCases() {
 class CarmenMalformedTest : public ::testing::TestWithParam<MalformedCase> {};
 
 TEST_P(CarmenMalformedTest, FailsWithFileLineAndExpectation) {
-  ScratchDir dir;
+  TempDir dir;
   const MalformedCase& c = GetParam();
   // Two good lines and a comment first, so the bad one is line 4.
   const auto path = WriteLog(dir,
@@ -288,7 +287,7 @@ INSTANTIATE_TEST_SUITE_P(Cases, CarmenMalformedTest, ::testing::ValuesIn(Malform
                          [](const auto& info) { return info.param.name; });
 
 TEST(CarmenReaderTest, LenientSkipsAndCountsMalformedLines) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string log = FlaserLine(180, 1) + "\n" + "FLASER 180 1 2 3\n" + OdomLine(0, 1) + "\n" +
                           "ODOM 1 2\n" + FlaserLine(180, 2) + "\n" +
                           "PARAM laser_front_laser_max_range x\n";
@@ -305,7 +304,7 @@ TEST(CarmenReaderTest, LenientSkipsAndCountsMalformedLines) {
 }
 
 TEST(CarmenReaderTest, MissingFileIsAnInputError) {
-  ScratchDir dir;
+  TempDir dir;
   const InputError e = ReadError(dir / "absent.clf");
   EXPECT_THAT(e.what(), HasSubstr("absent.clf"));
 }

@@ -13,14 +13,13 @@
 #include "common/io/carmen_reader.h"
 #include "common/io/testing_files.h"
 #include "common/util/error.h"
-#include "common/util/scratch_dir.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
 
 using io_testing::ReadBytes;
 using ::testing::HasSubstr;
-using testing::ScratchDir;
 
 constexpr double kPi = std::numbers::pi;
 
@@ -141,14 +140,14 @@ std::vector<std::string> Lines(const std::filesystem::path& path) {
 std::string FirstWord(const std::string& line) { return line.substr(0, line.find(' ')); }
 
 TEST(CarmenWriterTest, RoundTripsEveryMessageKind) {
-  ScratchDir dir;
+  TempDir dir;
   const Dataset original = MakeDataset();
   WriteCarmen(original, dir / "out.clf");
   ExpectSameDataset(ReadCarmen(dir / "out.clf"), original);
 }
 
 TEST(CarmenWriterTest, ChoosesMessagesAndOrdersThemByTime) {
-  ScratchDir dir;
+  TempDir dir;
   WriteCarmen(MakeDataset(), dir / "out.clf");
   std::vector<std::string> messages;
   for (const std::string& line : Lines(dir / "out.clf")) {
@@ -164,7 +163,7 @@ TEST(CarmenWriterTest, ChoosesMessagesAndOrdersThemByTime) {
 }
 
 TEST(CarmenWriterTest, KeepsEachStreamsOrderWhenTimestampsAreNotSorted) {
-  ScratchDir dir;
+  TempDir dir;
   Generator g;
   Dataset d;
   d.scans = {MakeScan(g, 180, 5.0, LaserMessage::kFront),
@@ -176,7 +175,7 @@ TEST(CarmenWriterTest, KeepsEachStreamsOrderWhenTimestampsAreNotSorted) {
 }
 
 TEST(CarmenWriterTest, GeometryFlaserCannotHoldGoesAsRobotLaser) {
-  ScratchDir dir;
+  TempDir dir;
   Generator g;
   Dataset d;
   d.scans = {MakeOddScan(g, 1.0, LaserMessage::kFront),
@@ -197,7 +196,7 @@ TEST(CarmenWriterTest, GeometryFlaserCannotHoldGoesAsRobotLaser) {
 }
 
 TEST(CarmenWriterTest, RangeMaxParamLetsFlaserCarryOtherRanges) {
-  ScratchDir dir;
+  TempDir dir;
   Generator g;
   Dataset d;
   d.params = {{"laser_front_laser_max_range", "20"}};
@@ -213,7 +212,7 @@ TEST(CarmenWriterTest, RangeMaxParamLetsFlaserCarryOtherRanges) {
 }
 
 TEST(CarmenWriterTest, MillimetreRangesReadBackExactly) {
-  ScratchDir dir;
+  TempDir dir;
   Generator g;
   Dataset d;
   d.scans = {MakeScan(g, 181, 1.0, LaserMessage::kFront)};
@@ -226,7 +225,7 @@ TEST(CarmenWriterTest, MillimetreRangesReadBackExactly) {
 }
 
 TEST(CarmenWriterTest, RejectsWhatCarmenCannotHold) {
-  ScratchDir dir;
+  TempDir dir;
   const auto expect_error = [&](const Dataset& d, const std::string& part) {
     try {
       WriteCarmen(d, dir / "bad.clf");
@@ -257,7 +256,7 @@ TEST(CarmenWriterTest, RejectsWhatCarmenCannotHold) {
 }
 
 TEST(CarmenWriterTest, UnwritablePathIsAnErrorNamingIt) {
-  ScratchDir dir;
+  TempDir dir;
   const auto path = dir / "missing_folder" / "out.clf";
   try {
     WriteCarmen(MakeDataset(), path);
@@ -270,7 +269,7 @@ TEST(CarmenWriterTest, UnwritablePathIsAnErrorNamingIt) {
 TEST(CarmenWriterRealDataTest, IntelLogRoundTrips) {
   const auto path = std::filesystem::path(EVOSLAM_DATA_DIR) / "intel.clf.bz2";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "no " << path;
-  ScratchDir dir;
+  TempDir dir;
   const Dataset original = ReadCarmen(path);
   WriteCarmen(original, dir / "intel.clf");
   ExpectSameDataset(ReadCarmen(dir / "intel.clf"), original);

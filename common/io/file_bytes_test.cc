@@ -7,13 +7,13 @@
 #include <string>
 
 #include "common/util/error.h"
-#include "common/util/scratch_dir.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
 
 TEST(FileBytesTest, ReadsEveryByteAndNamesAFileItCannotRead) {
-  testing::ScratchDir dir;
+  TempDir dir;
   const std::string bytes("a\0b\r\nc", 6);
   std::ofstream(dir / "f", std::ios::binary) << bytes;
   EXPECT_EQ(ReadFileBytes(dir / "f"), bytes);
@@ -34,7 +34,7 @@ TEST(FileBytesTest, ReadsEveryByteAndNamesAFileItCannotRead) {
 }
 
 TEST(FileBytesTest, WritesEveryByteAndNamesAFileItCannotWrite) {
-  testing::ScratchDir dir;
+  TempDir dir;
   const std::string bytes("a\0b\r\nc", 6);
   WriteFileBytes(dir / "f", "an older, longer content");
   WriteFileBytes(dir / "f", bytes);

@@ -8,7 +8,7 @@
 
 #include "common/io/testing_files.h"
 #include "common/util/error.h"
-#include "common/util/scratch_dir.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
@@ -18,7 +18,6 @@ using io_testing::GzipBytes;
 using io_testing::WriteBytes;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
-using testing::ScratchDir;
 
 std::vector<std::string> ReadAll(LineReader& reader) {
   std::vector<std::string> lines;
@@ -62,7 +61,7 @@ InputError CatchInputError(F&& f) {
 }
 
 TEST(LineReaderTest, SplitsPlainTextIntoLines) {
-  ScratchDir dir;
+  TempDir dir;
   WriteBytes(dir / "a.txt", "first\n\nthird\r\nlast without newline");
   LineReader reader(dir / "a.txt");
   EXPECT_EQ(reader.compression(), Compression::kNone);
@@ -73,13 +72,13 @@ TEST(LineReaderTest, SplitsPlainTextIntoLines) {
 }
 
 TEST(LineReaderTest, EmptyFileHasNoLines) {
-  ScratchDir dir;
+  TempDir dir;
   WriteBytes(dir / "empty", "");
   EXPECT_TRUE(ReadAll(dir / "empty").empty());
 }
 
 TEST(LineReaderTest, EmptyCompressedFilesHaveNoLines) {
-  ScratchDir dir;
+  TempDir dir;
   WriteBytes(dir / "empty.gz", GzipBytes(""));
   WriteBytes(dir / "empty.bz2", Bzip2Bytes(""));
   EXPECT_TRUE(ReadAll(dir / "empty.gz").empty());
@@ -87,52 +86,52 @@ TEST(LineReaderTest, EmptyCompressedFilesHaveNoLines) {
 }
 
 TEST(LineReaderTest, FinalNewlineDoesNotAddALine) {
-  ScratchDir dir;
+  TempDir dir;
   WriteBytes(dir / "a", "a\nb\n");
   EXPECT_THAT(ReadAll(dir / "a"), ElementsAre("a", "b"));
 }
 
 TEST(LineReaderTest, CountsLinesAcrossBufferRefills) {
-  ScratchDir dir;
+  TempDir dir;
   WriteBytes(dir / "many.txt", NumberedLines(100000));
   ExpectNumberedLines(dir / "many.txt", 100000);
 }
 
 TEST(LineReaderTest, ReadsLinesLongerThanItsBuffer) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string long_line(3'000'000, 'q');
   WriteBytes(dir / "long", "short\n" + long_line + "\nend\n");
   EXPECT_THAT(ReadAll(dir / "long"), ElementsAre("short", long_line, "end"));
 }
 
 TEST(LineReaderTest, DecompressesGzipWhateverTheName) {
-  ScratchDir dir;
+  TempDir dir;
   WriteBytes(dir / "log.txt", GzipBytes(NumberedLines(50000)));
   EXPECT_EQ(LineReader(dir / "log.txt").compression(), Compression::kGzip);
   ExpectNumberedLines(dir / "log.txt", 50000);
 }
 
 TEST(LineReaderTest, DecompressesBzip2WhateverTheName) {
-  ScratchDir dir;
+  TempDir dir;
   WriteBytes(dir / "log.gz", Bzip2Bytes(NumberedLines(50000)));
   EXPECT_EQ(LineReader(dir / "log.gz").compression(), Compression::kBzip2);
   ExpectNumberedLines(dir / "log.gz", 50000);
 }
 
 TEST(LineReaderTest, ReadsConcatenatedGzipMembers) {
-  ScratchDir dir;
+  TempDir dir;
   WriteBytes(dir / "two.gz", GzipBytes("a\nb") + GzipBytes("c\nd\n"));
   EXPECT_THAT(ReadAll(dir / "two.gz"), ElementsAre("a", "bc", "d"));
 }
 
 TEST(LineReaderTest, ReadsConcatenatedBzip2Streams) {
-  ScratchDir dir;
+  TempDir dir;
   WriteBytes(dir / "two.bz2", Bzip2Bytes("a\nb\n") + Bzip2Bytes("c\nd\n") + Bzip2Bytes("e\n"));
   EXPECT_THAT(ReadAll(dir / "two.bz2"), ElementsAre("a", "b", "c", "d", "e"));
 }
 
 TEST(LineReaderTest, MissingFileNamesTheFile) {
-  ScratchDir dir;
+  TempDir dir;
   const auto path = dir / "no_such_log.clf";
   const InputError e = CatchInputError([&] { LineReader reader(path); });
   EXPECT_EQ(e.source(), path.string());
@@ -141,7 +140,7 @@ TEST(LineReaderTest, MissingFileNamesTheFile) {
 }
 
 TEST(LineReaderTest, DirectoryIsAnInputError) {
-  ScratchDir dir;
+  TempDir dir;
   const InputError e = CatchInputError([&] {
     LineReader reader(dir.path());
     ReadAll(reader);
@@ -150,7 +149,7 @@ TEST(LineReaderTest, DirectoryIsAnInputError) {
 }
 
 TEST(LineReaderTest, RejectsXzAndZstdAsUnsupported) {
-  ScratchDir dir;
+  TempDir dir;
   WriteBytes(dir / "log.xz", std::string("\xFD"
                                          "7zXZ\0rest",
                                          10));
@@ -167,7 +166,7 @@ TEST(LineReaderTest, RejectsXzAndZstdAsUnsupported) {
 }
 
 TEST(LineReaderTest, TruncatedGzipIsAnErrorAtTheLineReached) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string text = NumberedLines(20000);
   const std::string gz = GzipBytes(text);
   WriteBytes(dir / "cut.gz", gz.substr(0, gz.size() / 2));
@@ -182,7 +181,7 @@ TEST(LineReaderTest, TruncatedGzipIsAnErrorAtTheLineReached) {
 }
 
 TEST(LineReaderTest, TruncatedBzip2IsAnError) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string bz = Bzip2Bytes(NumberedLines(20000));
   WriteBytes(dir / "cut.bz2", bz.substr(0, bz.size() - 100));
   LineReader reader(dir / "cut.bz2");
@@ -193,7 +192,7 @@ TEST(LineReaderTest, TruncatedBzip2IsAnError) {
 }
 
 TEST(LineReaderTest, CorruptBzip2IsAnError) {
-  ScratchDir dir;
+  TempDir dir;
   std::string bz = Bzip2Bytes(NumberedLines(20000));
   for (std::size_t i = bz.size() / 2; i < bz.size() / 2 + 64; ++i)
     bz[i] = static_cast<char>(~bz[i]);
@@ -204,7 +203,7 @@ TEST(LineReaderTest, CorruptBzip2IsAnError) {
 }
 
 TEST(LineReaderTest, CorruptGzipIsAnError) {
-  ScratchDir dir;
+  TempDir dir;
   std::string gz = GzipBytes(NumberedLines(20000));
   for (std::size_t i = gz.size() / 2; i < gz.size() / 2 + 64; ++i)
     gz[i] = static_cast<char>(~gz[i]);
@@ -215,7 +214,7 @@ TEST(LineReaderTest, CorruptGzipIsAnError) {
 }
 
 TEST(LineReaderTest, MovedReaderContinuesWhereItWas) {
-  ScratchDir dir;
+  TempDir dir;
   WriteBytes(dir / "a", "1\n2\n3\n");
   LineReader first(dir / "a");
   ASSERT_EQ(first.Next(), "1");

@@ -5,17 +5,16 @@
 
 #include "common/io/testing_files.h"
 #include "common/util/error.h"
-#include "common/util/scratch_dir.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
 
 using io_testing::WriteBytes;
 using ::testing::HasSubstr;
-using testing::ScratchDir;
 
 TEST(RelationsTest, KeepsThePlanarPart) {
-  ScratchDir dir;
+  TempDir dir;
   WriteBytes(dir / "r.relations",
              "# t1 t2 x y z roll pitch yaw\n"
              "976052905.167303 976052911.885496 -0.056990 -0.128430 0.000000 0.000000 0.000000 "
@@ -31,7 +30,7 @@ TEST(RelationsTest, KeepsThePlanarPart) {
 }
 
 TEST(RelationsTest, MalformedLinesNameFileLineAndExpectation) {
-  ScratchDir dir;
+  TempDir dir;
   WriteBytes(dir / "short.relations", "1 2 3 4 5 6 7 8\n1 2 3 4 5 6 7\n");
   try {
     ReadRelations(dir / "short.relations");

@@ -5,17 +5,16 @@
 
 #include "common/io/testing_files.h"
 #include "common/util/error.h"
-#include "common/util/scratch_dir.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
 
 using io_testing::ReadBytes;
 using ::testing::HasSubstr;
-using testing::ScratchDir;
 
 TEST(TextFileWriterTest, WritesWhatItIsGiven) {
-  ScratchDir dir;
+  TempDir dir;
   TextFileWriter writer(dir / "a.txt");
   writer.Write("one\n");
   writer.Write("two");
@@ -25,7 +24,7 @@ TEST(TextFileWriterTest, WritesWhatItIsGiven) {
 }
 
 TEST(TextFileWriterTest, CannotCreateIsAnErrorNamingThePath) {
-  ScratchDir dir;
+  TempDir dir;
   const auto path = dir / "missing" / "a.txt";
   try {
     TextFileWriter writer(path);

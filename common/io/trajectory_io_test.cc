@@ -11,7 +11,7 @@
 
 #include "common/io/testing_files.h"
 #include "common/util/error.h"
-#include "common/util/scratch_dir.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
@@ -20,7 +20,6 @@ using io_testing::Bzip2Bytes;
 using io_testing::ReadBytes;
 using io_testing::WriteBytes;
 using ::testing::HasSubstr;
-using testing::ScratchDir;
 
 std::vector<StampedPose> SomePoses() {
   std::vector<StampedPose> poses;
@@ -46,21 +45,21 @@ void ExpectNearPoses(const std::vector<StampedPose>& actual,
 }
 
 TEST(TrajectoryIoTest, TextRoundTrip) {
-  ScratchDir dir;
+  TempDir dir;
   const auto poses = SomePoses();
   WriteTrajectoryText(poses, dir / "t.txt");
   ExpectNearPoses(ReadTrajectory(dir / "t.txt"), poses, 1e-6);
 }
 
 TEST(TrajectoryIoTest, TumRoundTrip) {
-  ScratchDir dir;
+  TempDir dir;
   const auto poses = SomePoses();
   WriteTrajectoryTum(poses, dir / "t.tum");
   ExpectNearPoses(ReadTrajectory(dir / "t.tum"), poses, 1e-6);
 }
 
 TEST(TrajectoryIoTest, TumLinesHoldTheHeadingQuaternion) {
-  ScratchDir dir;
+  TempDir dir;
   const std::vector<StampedPose> poses = {{1.5, Pose2(3, 4, std::numbers::pi / 2)}};
   WriteTrajectoryTum(poses, dir / "t.tum");
   std::vector<double> values;
@@ -83,7 +82,7 @@ TEST(TrajectoryIoTest, TumLinesHoldTheHeadingQuaternion) {
 }
 
 TEST(TrajectoryIoTest, ReadsCommentsUnnormalisedQuaternionsAndCompressedFiles) {
-  ScratchDir dir;
+  TempDir dir;
   // Yaw of 90 deg as a quaternion scaled by 2; x and y rotations would be dropped.
   WriteBytes(dir / "t.tum.bz2", Bzip2Bytes("# TUM\n\n1.0 1 2 0 0 0 1.41421356 1.41421356\n"
                                            "2.0 3 4 0.5 0 0 0 1\n"));
@@ -104,7 +103,7 @@ InputError ReadError(const std::filesystem::path& path) {
 }
 
 TEST(TrajectoryIoTest, MalformedLinesNameFileLineAndExpectation) {
-  ScratchDir dir;
+  TempDir dir;
   WriteBytes(dir / "five.txt", "# t x y theta\n1 2 3 4\n1 2 3 4 5\n");
   InputError e = ReadError(dir / "five.txt");
   EXPECT_EQ(e.line(), 3u);
@@ -127,7 +126,7 @@ TEST(TrajectoryIoTest, MalformedLinesNameFileLineAndExpectation) {
 }
 
 TEST(TrajectoryIoTest, UnwritablePathIsAnError) {
-  ScratchDir dir;
+  TempDir dir;
   const auto path = dir / "no" / "t.txt";
   EXPECT_THROW(WriteTrajectoryText(SomePoses(), path), Error);
   EXPECT_THROW(WriteTrajectoryTum(SomePoses(), path), Error);

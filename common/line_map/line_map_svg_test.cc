@@ -10,7 +10,7 @@
 #include <string>
 
 #include "common/util/error.h"
-#include "common/util/scratch_dir.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
@@ -38,7 +38,7 @@ TEST(LineMapSvgTest, DrawsWallsAndPolylinesWithYUp) {
   const LineMap map({{{0, 0}, {3, 0}}, {{0, 2}, {3, 2}}});
   const std::vector<std::vector<Eigen::Vector2d>> paths = {{{0.5, 0.5}, {2.5, 0.5}},
                                                            {{0.5, 1.5}, {2.5, 1.5}}};
-  const testing::ScratchDir dir;
+  const TempDir dir;
   const std::filesystem::path path = dir / "map.svg";
   WriteSvg(map, path, paths, 100.0);
   const std::string svg = ReadAll(path);
@@ -67,14 +67,14 @@ TEST(LineMapSvgTest, DrawsWallsAndPolylinesWithYUp) {
 TEST(LineMapSvgTest, PolylinesExtendTheDrawing) {
   const LineMap empty;
   const std::vector<std::vector<Eigen::Vector2d>> paths = {{{0, 0}, {4, 1}}};
-  const testing::ScratchDir dir;
+  const TempDir dir;
   const std::filesystem::path path = dir / "path.svg";
   WriteSvg(empty, path, paths, 10.0);
   EXPECT_THAT(ReadAll(path), HasSubstr("width=\"50.000\" height=\"20.000\""));
 }
 
 TEST(LineMapSvgTest, UnwritablePathThrowsNamingIt) {
-  const testing::ScratchDir dir;
+  const TempDir dir;
   const std::filesystem::path path = dir / "no_such_dir" / "map.svg";
   try {
     WriteSvg(LineMap(), path);

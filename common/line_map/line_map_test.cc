@@ -13,7 +13,7 @@
 #include "common/io/testing_files.h"
 #include "common/line_map/segment_geometry.h"
 #include "common/util/error.h"
-#include "common/util/scratch_dir.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
@@ -247,7 +247,7 @@ TEST(LineMapTest, SegmentsNearAgreesWithBruteForce) {
 TEST(LineMapIoTest, RoundTripIsExact) {
   std::mt19937_64 gen(11);
   const std::vector<Segment> walls = RandomWalls(gen, 50, 30.0, 5.0);
-  const testing::ScratchDir dir;
+  const TempDir dir;
   const std::filesystem::path path = dir / "roundtrip.lines";
   WriteLineMap(LineMap(walls), path);
   const LineMap read = ReadLineMap(path);
@@ -259,7 +259,7 @@ TEST(LineMapIoTest, RoundTripIsExact) {
 }
 
 TEST(LineMapIoTest, SkipsCommentsAndBlankLines) {
-  const testing::ScratchDir dir;
+  const TempDir dir;
   const std::filesystem::path path = dir / "comments.lines";
   WriteText(path, "# a room\n\n  0 0 4 0   # floor\n\t\n4 0 +4 3.5\r\n-1e-1 2 3 2\n");
   const LineMap map = ReadLineMap(path);
@@ -272,7 +272,7 @@ TEST(LineMapIoTest, SkipsCommentsAndBlankLines) {
 // in it still names the line.
 TEST(LineMapIoTest, ReadsGzipAndBzip2AsThePlainFile) {
   const std::string text = "# a room\n0 0 4 0\n4 0 4 3.5\n4 3.5 0 3.5\n";
-  const testing::ScratchDir dir;
+  const TempDir dir;
   io_testing::WriteBytes(dir / "room.lines.gz", io_testing::GzipBytes(text));
   io_testing::WriteBytes(dir / "room.lines.bz2", io_testing::Bzip2Bytes(text));
   WriteText(dir / "room.lines", text);
@@ -309,7 +309,7 @@ TEST(LineMapIoTest, MalformedLinesNameFileAndLine) {
       {"0 0 1 1x\n", ":1: expected a finite number for field 4"},
       {"1 2 1 2\n", ":1: expected a wall of non-zero length"},
   };
-  const testing::ScratchDir dir;
+  const TempDir dir;
   int i = 0;
   for (const auto& c : cases) {
     const std::filesystem::path path = dir / ("bad" + std::to_string(i++) + ".lines");
@@ -324,7 +324,7 @@ TEST(LineMapIoTest, MalformedLinesNameFileAndLine) {
 }
 
 TEST(LineMapIoTest, MissingFileNamesPath) {
-  const testing::ScratchDir dir;
+  const TempDir dir;
   const std::filesystem::path path = dir / "does_not_exist.lines";
   try {
     ReadLineMap(path);

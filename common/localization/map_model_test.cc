@@ -11,7 +11,7 @@
 #include "common/localization/ray_fan.h"
 #include "common/localization/test_scenes.h"
 #include "common/util/error.h"
-#include "common/util/scratch_dir.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
@@ -71,7 +71,7 @@ TEST(MapModelTest, LocalizesInAGridMap) {
 }
 
 TEST(MapModelTest, LoadsLinesOrGridByExtension) {
-  const testing::ScratchDir dir;
+  const TempDir dir;
   WriteLineMap(testing::BoxRoom(), dir / "room.lines");
   WriteMapYaml(BoxRoomGrid(0.05), dir / "room.yaml");
   const MapModel lines = LoadMapModel(dir / "room.lines");

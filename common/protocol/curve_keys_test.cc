@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "common/util/error.h"
-#include "common/util/scratch_dir.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
@@ -24,7 +24,7 @@ TEST(CurveKeysTest, PairsAreFreshAndThePublicKeyFollowsFromTheSecret) {
 }
 
 TEST(CurveKeysTest, FilesRoundTripWithTheSecretReadableByTheOwnerOnly) {
-  const evoslam::testing::ScratchDir dir;
+  const evoslam::TempDir dir;
   const CurveKeyPair keys = GenerateCurveKeyPair();
   WriteCurveKeyPair(keys, dir.path() / "keys", "coordinator", false);
   EXPECT_EQ(ReadCurveKey(dir.path() / "keys" / "coordinator.pub"), keys.public_key);
@@ -46,7 +46,7 @@ TEST(CurveKeysTest, FilesRoundTripWithTheSecretReadableByTheOwnerOnly) {
 }
 
 TEST(CurveKeysTest, BadKeyFilesNameTheFile) {
-  const evoslam::testing::ScratchDir dir;
+  const evoslam::TempDir dir;
   std::ofstream(dir.path() / "bad.pub") << "not a key\n";
   try {
     ReadCurveKey(dir.path() / "bad.pub");

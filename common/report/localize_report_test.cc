@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "common/util/error.h"
-#include "common/util/scratch_dir.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
@@ -121,7 +121,7 @@ TEST(LocalizeReportTest, SummaryNamesTheOdometryStallsFilledIn) {
 }
 
 TEST(LocalizeReportTest, JsonRoundTripsWithZeroFieldsSpelledOut) {
-  const testing::ScratchDir dir;
+  const TempDir dir;
   const auto path = dir / "report.json";
   proto::LocalizeReport r = SampleReport();
   r.mutable_params()->set_seed(0);

@@ -7,7 +7,7 @@
 #include "common/image/image.h"
 #include "common/localization/test_scenes.h"
 #include "common/util/error.h"
-#include "common/util/scratch_dir.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
@@ -22,7 +22,7 @@ int CountPixels(const Image& image, Rgb color) {
 
 class MapPictureTest : public ::testing::Test {
  protected:
-  testing::ScratchDir dir_;
+  TempDir dir_;
   std::filesystem::path path_ = dir_ / "map.png";
 };
 

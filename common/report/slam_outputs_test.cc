@@ -20,7 +20,7 @@
 #include "common/slam/methods/slam_methods.h"
 #include "common/slam/slam_params.h"
 #include "common/util/error.h"
-#include "common/util/scratch_dir.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
@@ -115,7 +115,7 @@ class SlamOutputsTest : public ::testing::Test {
 
   const Dataset log_ = SimulatedLog();
   const SlamResult result_ = ResultAtTruth(log_);
-  testing::ScratchDir dir_;
+  TempDir dir_;
 };
 
 int CountPixels(const Image& image, Rgb color) {

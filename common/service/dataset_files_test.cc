@@ -6,8 +6,8 @@
 #include <iterator>
 
 #include "common/util/error.h"
-#include "common/util/scratch_dir.h"
 #include "common/util/sha256.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
@@ -26,7 +26,7 @@ std::string Read(const std::filesystem::path& path) {
 }
 
 TEST(DatasetFilesTest, KeepsADatasetUnderItsHashAndName) {
-  testing::ScratchDir dir;
+  TempDir dir;
   DatasetFiles files(dir / "cache");
   const std::string log = "FLASER 3 1 2 3 0 0 0 0 0 0 0 host 0\n";
   const proto::DatasetRef ref = RefOf("run.clf", log);
@@ -41,7 +41,7 @@ TEST(DatasetFilesTest, KeepsADatasetUnderItsHashAndName) {
 }
 
 TEST(DatasetFilesTest, RefusesBytesThatDoNotMatchTheirReference) {
-  testing::ScratchDir dir;
+  TempDir dir;
   DatasetFiles files(dir.path());
   proto::DatasetRef ref = RefOf("a.clf", "the real bytes");
   EXPECT_THROW(files.Put(ref, "other bytes of a len"), Error);  // size differs
@@ -61,7 +61,7 @@ TEST(DatasetFilesTest, NamesFromTheNetworkCannotLeaveTheCache) {
 }
 
 TEST(DatasetFilesTest, AMapYamlLivesBesideItsImage) {
-  testing::ScratchDir dir;
+  TempDir dir;
   DatasetFiles files(dir.path());
   const std::string yaml = "image: room.pgm\nresolution: 0.1\norigin: [0, 0, 0]\n";
   const std::string pgm = "P2\n1 1\n255\n0\n";

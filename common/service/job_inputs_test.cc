@@ -8,8 +8,8 @@
 #include "common/sensor/dataset.h"
 #include "common/service/dataset_files.h"
 #include "common/util/error.h"
-#include "common/util/scratch_dir.h"
 #include "common/util/sha256.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
@@ -37,7 +37,7 @@ Dataset ScansAt(std::initializer_list<double> timestamps) {
 }
 
 TEST(LoadJobRelationsTest, RelationsThatJoinNoTwoScansOfTheLogAreRefusedByName) {
-  testing::ScratchDir dir;
+  TempDir dir;
   DatasetFiles files(dir / "cache");
   const Dataset log = ScansAt({10.0, 10.5, 11.0});
   EXPECT_FALSE(LoadJobRelations(files, {}, log));

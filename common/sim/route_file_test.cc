@@ -8,7 +8,7 @@
 #include <string>
 
 #include "common/util/error.h"
-#include "common/util/scratch_dir.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
@@ -21,7 +21,7 @@ void WriteText(const std::filesystem::path& path, const std::string& text) {
 }
 
 TEST(RouteFileTest, ReadsWaypointsInOrderSkippingComments) {
-  const testing::ScratchDir dir;
+  const TempDir dir;
   const std::filesystem::path path = dir / "loop.route";
   WriteText(path, "# two laps\n1 1\n\n 29 1.5  # corner\r\n-2e-1 +3\n");
   EXPECT_THAT(ReadRoute(path), ElementsAre(Eigen::Vector2d(1, 1), Eigen::Vector2d(29, 1.5),
@@ -40,7 +40,7 @@ TEST(RouteFileTest, MalformedRoutesNameFileAndLine) {
       {"1 1\n", ":1: a route needs at least two waypoints, found 1"},
       {"# nothing\n\n", ":2: a route needs at least two waypoints, found 0"},
   };
-  const testing::ScratchDir dir;
+  const TempDir dir;
   int i = 0;
   for (const auto& c : cases) {
     const std::filesystem::path path = dir / ("bad" + std::to_string(i++) + ".route");
@@ -55,7 +55,7 @@ TEST(RouteFileTest, MalformedRoutesNameFileAndLine) {
 }
 
 TEST(RouteFileTest, MissingFileNamesPath) {
-  const testing::ScratchDir dir;
+  const TempDir dir;
   const std::filesystem::path path = dir / "absent.route";
   try {
     ReadRoute(path);

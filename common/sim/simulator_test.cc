@@ -11,7 +11,7 @@
 
 #include "common/io/carmen_reader.h"
 #include "common/util/error.h"
-#include "common/util/scratch_dir.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
@@ -178,7 +178,7 @@ TEST(WriteSimulationTest, WritesLogMapAndTruthReproducibly) {
   options.noise.gaussian_sigma = 0.02;
   options.max_scans = 25;
   const Dataset d = Simulate(world, options);
-  const testing::ScratchDir scratch;
+  const TempDir scratch;
   const std::filesystem::path dir = scratch / "out" / "nested";
   WriteSimulation(d, world, dir);
 
@@ -216,7 +216,7 @@ TEST(WriteSimulationTest, WritesLogMapAndTruthReproducibly) {
 }
 
 TEST(WriteSimulationTest, UncreatableDirectoryNamesThePath) {
-  const testing::ScratchDir scratch;
+  const TempDir scratch;
   const std::filesystem::path file = scratch / "file";
   std::ofstream(file) << "x";
   const World world = BuiltinWorld("empty-room");

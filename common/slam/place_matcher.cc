@@ -63,8 +63,7 @@ Eigen::Vector2d FacingNormal(std::span<const Eigen::Vector2d> returns, std::size
 }  // namespace
 
 PlaceMatcher::PlaceMatcher(std::span<const LaserScan> scans, std::span<const Pose2> poses,
-                           double resolution, double sigma, double margin)
-    : resolution_(resolution) {
+                           double resolution, double sigma, double margin) {
   if (scans.size() != poses.size()) throw Error("place matcher: one pose per scan is needed");
   if (!(resolution > 0.0) || !(sigma > 0.0)) {
     throw Error("place matcher: the resolution and sigma must be positive");
@@ -82,10 +81,10 @@ PlaceMatcher::PlaceMatcher(std::span<const LaserScan> scans, std::span<const Pos
     lo = lo.cwiseMin(h);
     hi = hi.cwiseMax(h);
   }
-  origin_ = lo.array() - margin;
-  width_ = static_cast<int>(std::ceil((hi.x() - lo.x() + 2 * margin) / resolution)) + 1;
-  height_ = static_cast<int>(std::ceil((hi.y() - lo.y() + 2 * margin) / resolution)) + 1;
-  field_.assign(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), 0.0f);
+  const int width = static_cast<int>(std::ceil((hi.x() - lo.x() + 2 * margin) / resolution)) + 1;
+  const int height = static_cast<int>(std::ceil((hi.y() - lo.y() + 2 * margin) / resolution)) + 1;
+  geometry_ = GridGeometry(resolution, (lo.array() - margin).matrix(), width, height);
+  field_.assign(geometry_.cell_count(), 0.0f);
 
   // Stamp a Gaussian around every return, keeping the nearest one's value per cell.
   const int radius = static_cast<int>(std::ceil(3.0 * sigma / resolution));
@@ -97,30 +96,28 @@ PlaceMatcher::PlaceMatcher(std::span<const LaserScan> scans, std::span<const Pos
     }
   }
   for (const Eigen::Vector2d& h : hits_) {
-    const int cx = static_cast<int>(std::floor((h.x() - origin_.x()) / resolution));
-    const int cy = static_cast<int>(std::floor((h.y() - origin_.y()) / resolution));
+    const Eigen::Vector2d at = geometry_.ToCells(h);
+    const int cx = static_cast<int>(std::floor(at.x()));
+    const int cy = static_cast<int>(std::floor(at.y()));
     for (int dy = -radius; dy <= radius; ++dy) {
       const int y = cy + dy;
-      if (y < 0 || y >= height_) continue;
+      if (y < 0 || y >= height) continue;
       for (int dx = -radius; dx <= radius; ++dx) {
         const int x = cx + dx;
-        if (x < 0 || x >= width_) continue;
-        float& cell = field_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
-                             static_cast<std::size_t>(x)];
+        if (x < 0 || x >= width) continue;
+        float& cell = field_[geometry_.Index(x, y)];
         cell = std::max(
             cell, kernel[static_cast<std::size_t>((dy + radius) * (2 * radius + 1) + dx + radius)]);
       }
     }
   }
   constexpr int k = kCoarseStepCells;
-  const auto phase_width = static_cast<std::size_t>((width_ + k - 1) / k);
-  coarse_field_.assign(k * static_cast<std::size_t>(height_) * phase_width, 0.0f);
-  for (int y = 0; y < height_; ++y) {
-    for (int x = 0; x < width_; ++x) {
-      coarse_field_[static_cast<std::size_t>((x % k) * height_ + y) * phase_width +
-                    static_cast<std::size_t>(x / k)] =
-          field_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
-                 static_cast<std::size_t>(x)];
+  const auto phase_width = static_cast<std::size_t>((width + k - 1) / k);
+  coarse_field_.assign(k * static_cast<std::size_t>(height) * phase_width, 0.0f);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      coarse_field_[static_cast<std::size_t>((x % k) * height + y) * phase_width +
+                    static_cast<std::size_t>(x / k)] = field_[geometry_.Index(x, y)];
     }
   }
 }
@@ -129,15 +126,18 @@ double PlaceMatcher::Score(std::span<const Eigen::Vector2d> points, const Pose2&
   if (points.empty()) return 0.0;
   double sum = 0.0;
   const double c = std::cos(pose.theta()), s = std::sin(pose.theta());
-  const double inv = 1.0 / resolution_;
+  // Every score here finds cells by multiplying by the reciprocal of the resolution: cheaper in
+  // these loops than GridGeometry's division, with which a point on a cell's edge may land in the
+  // next cell.
+  const Eigen::Vector2d& origin = geometry_.origin();
+  const double inv = 1.0 / geometry_.resolution();
   for (const Eigen::Vector2d& p : points) {
     const double wx = pose.x() + c * p.x() - s * p.y();
     const double wy = pose.y() + s * p.x() + c * p.y();
-    const double fx = std::floor((wx - origin_.x()) * inv);
-    const double fy = std::floor((wy - origin_.y()) * inv);
-    if (fx < 0 || fy < 0 || fx >= width_ || fy >= height_) continue;
-    sum += field_[static_cast<std::size_t>(fy) * static_cast<std::size_t>(width_) +
-                  static_cast<std::size_t>(fx)];
+    const double fx = std::floor((wx - origin.x()) * inv);
+    const double fy = std::floor((wy - origin.y()) * inv);
+    if (!geometry_.ContainsCells(fx, fy)) continue;
+    sum += field_[geometry_.Index(static_cast<int>(fx), static_cast<int>(fy))];
   }
   return sum / static_cast<double>(points.size());
 }
@@ -145,17 +145,15 @@ double PlaceMatcher::Score(std::span<const Eigen::Vector2d> points, const Pose2&
 double PlaceMatcher::SideAgreement(std::span<const Eigen::Vector2d> points,
                                    const Pose2& pose) const {
   const Eigen::Rotation2Dd turn(pose.theta());
-  const double inv = 1.0 / resolution_;
+  const Eigen::Vector2d& origin = geometry_.origin();
+  const double inv = 1.0 / geometry_.resolution();
   std::size_t near = 0, agree = 0;
   for (const Eigen::Vector2d& p : points) {
     const Eigen::Vector2d w = pose.translation() + turn * p;
-    const double fx = std::floor((w.x() - origin_.x()) * inv);
-    const double fy = std::floor((w.y() - origin_.y()) * inv);
-    if (fx < 0 || fy < 0 || fx >= width_ || fy >= height_) continue;
-    if (field_[static_cast<std::size_t>(fy) * static_cast<std::size_t>(width_) +
-               static_cast<std::size_t>(fx)] < kNearField) {
-      continue;
-    }
+    const double fx = std::floor((w.x() - origin.x()) * inv);
+    const double fy = std::floor((w.y() - origin.y()) * inv);
+    if (!geometry_.ContainsCells(fx, fy)) continue;
+    if (field_[geometry_.Index(static_cast<int>(fx), static_cast<int>(fy))] < kNearField) continue;
     // The nearest return by a plain scan, and its normal only now: this runs for the few matches
     // that would be loops, where keeping a normal per return or per cell would cost every loop
     // check's field.
@@ -187,7 +185,7 @@ void PlaceMatcher::ScoreTranslations(std::span<const Eigen::Vector2d> points, co
                                      std::vector<double>& scores) const {
   const int side = 2 * half_steps + 1;
   scores.assign(static_cast<std::size_t>(side) * static_cast<std::size_t>(side), 0.0);
-  const double cells_per_step = step / resolution_;
+  const double cells_per_step = step / geometry_.resolution();
   const auto k = static_cast<int>(std::lround(cells_per_step));
   if ((k != 1 && k != kCoarseStepCells) || std::abs(cells_per_step - k) > 1e-9) {
     for (int iy = -half_steps; iy <= half_steps; ++iy) {
@@ -203,25 +201,27 @@ void PlaceMatcher::ScoreTranslations(std::span<const Eigen::Vector2d> points, co
   if (points.empty()) return;
   const auto floor_div = [](int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); };
   const double c = std::cos(theta), s = std::sin(theta);
-  const double inv = 1.0 / resolution_;
+  const Eigen::Vector2d& origin = geometry_.origin();
+  const double inv = 1.0 / geometry_.resolution();
+  const int width = geometry_.width(), height = geometry_.height();
   const float* field = k == 1 ? field_.data() : coarse_field_.data();
-  const auto phase_width = static_cast<std::size_t>((width_ + k - 1) / k);
+  const auto phase_width = static_cast<std::size_t>((width + k - 1) / k);
   for (const Eigen::Vector2d& p : points) {
-    const double fx = std::floor((center.x() + c * p.x() - s * p.y() - origin_.x()) * inv);
-    const double fy = std::floor((center.y() + s * p.x() + c * p.y() - origin_.y()) * inv);
+    const double fx = std::floor((center.x() + c * p.x() - s * p.y() - origin.x()) * inv);
+    const double fy = std::floor((center.y() + s * p.x() + c * p.y() - origin.y()) * inv);
     // Too far off the field for any translation to bring it in (and safe to convert).
     const double reach = static_cast<double>(k) * half_steps;
-    if (fx < -reach || fy < -reach || fx >= width_ + reach || fy >= height_ + reach) continue;
+    if (fx < -reach || fy < -reach || fx >= width + reach || fy >= height + reach) continue;
     const int x = static_cast<int>(fx), y = static_cast<int>(fy);
     const int ix_lo = std::max(-half_steps, -floor_div(x, k));
-    const int ix_hi = std::min(half_steps, floor_div(width_ - 1 - x, k));
+    const int ix_hi = std::min(half_steps, floor_div(width - 1 - x, k));
     // Cell x + k ix lies at column x / k + ix of its remainder's rows.
     const int column = floor_div(x, k);
     const float* phase = field + static_cast<std::size_t>(x - k * column) *
-                                     static_cast<std::size_t>(height_) * phase_width;
+                                     static_cast<std::size_t>(height) * phase_width;
     for (int iy = -half_steps; iy <= half_steps; ++iy) {
       const int row = y + k * iy;
-      if (row < 0 || row >= height_) continue;
+      if (row < 0 || row >= height) continue;
       const float* cells = phase + static_cast<std::size_t>(row) * phase_width;
       double* out = &scores[static_cast<std::size_t>((iy + half_steps) * side + half_steps)];
       for (int ix = ix_lo; ix <= ix_hi; ++ix) out[ix] += cells[column + ix];
@@ -301,7 +301,7 @@ PlaceMatcher::Match PlaceMatcher::Search(std::span<const Eigen::Vector2d> points
                                          const Pose2& center, double window, double window_theta,
                                          double rival_distance, double spread_score) const {
   if (field_.empty() || points.empty()) return {center, 0.0};
-  const double step = kCoarseStepCells * resolution_;
+  const double step = kCoarseStepCells * geometry_.resolution();
   const double step_theta = 0.0175;  // about 1 degree: a 5 m return moves 9 cm
   const Match coarse = Lattice(points, center, step, static_cast<int>(std::ceil(window / step)),
                                step_theta, static_cast<int>(std::ceil(window_theta / step_theta)),

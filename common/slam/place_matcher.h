@@ -5,6 +5,7 @@
 #include <span>
 #include <vector>
 
+#include "common/grid/grid_geometry.h"
 #include "common/sensor/laser_scan.h"
 #include "common/transform/pose2.h"
 
@@ -72,10 +73,8 @@ class PlaceMatcher {
   // Near an obstacle for SideAgreement: within about 1.2 sigma of a return.
   static constexpr float kNearField = 0.5f;
 
-  double resolution_;
-  Eigen::Vector2d origin_;
-  int width_ = 0, height_ = 0;
-  std::vector<float> field_;  // row-major
+  GridGeometry geometry_;     // the field's cells: none when the place has no returns
+  std::vector<float> field_;  // a value per cell, by its index in geometry_
   // The place's returns (world frame) scan by scan: scan k's are [scan_starts_[k],
   // scan_starts_[k + 1]), seen from lasers_[k].
   std::vector<Eigen::Vector2d> hits_;

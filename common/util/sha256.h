@@ -1,6 +1,8 @@
 #ifndef EVOSLAM_COMMON_UTIL_SHA256_H_
 #define EVOSLAM_COMMON_UTIL_SHA256_H_
 
+#include <sodium/crypto_hash_sha256.h>
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -11,8 +13,9 @@
 
 namespace evoslam {
 
-// SHA-256 (FIPS 180-4). Datasets are named by the SHA-256 of their bytes in the service protocol:
-// the coordinator checks an upload against its name and workers cache datasets by it.
+// SHA-256 (FIPS 180-4), computed by libsodium. Datasets are named by the SHA-256 of their bytes in
+// the service protocol: the coordinator checks an upload against its name and workers cache
+// datasets by it.
 class Sha256 {
  public:
   Sha256();
@@ -29,10 +32,7 @@ class Sha256 {
  private:
   void Consume(const unsigned char* data, std::size_t size);
 
-  std::array<std::uint32_t, 8> state_;
-  std::array<unsigned char, 64> block_{};  // a partial block waiting for more bytes
-  std::size_t block_size_ = 0;
-  std::uint64_t message_bytes_ = 0;
+  crypto_hash_sha256_state state_;
   bool finished_ = false;
 };
 

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "common/util/error.h"
-#include "common/util/scratch_dir.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
@@ -119,7 +119,7 @@ TEST(Sha256Test, UpdateAfterFinishThrows) {
 }
 
 TEST(Sha256Test, FileHashEqualsStringHash) {
-  const testing::ScratchDir dir;
+  const TempDir dir;
   // Empty, one partial chunk, and more than one 64 KiB read chunk with a partial one at the end.
   for (const std::size_t size : {std::size_t{0}, std::size_t{130}, std::size_t{200001}}) {
     const std::string content = PatternBytes(size);
@@ -130,7 +130,7 @@ TEST(Sha256Test, FileHashEqualsStringHash) {
 }
 
 TEST(Sha256Test, MissingFileThrowsNamingIt) {
-  const testing::ScratchDir dir;
+  const TempDir dir;
   const auto path = dir / "no_such_dataset.clf";
   try {
     Sha256HexOfFile(path);
@@ -142,7 +142,7 @@ TEST(Sha256Test, MissingFileThrowsNamingIt) {
 
 TEST(Sha256Test, UnreadableFileThrowsNamingIt) {
   // A directory opens on Linux but fails on read.
-  const testing::ScratchDir dir;
+  const TempDir dir;
   try {
     Sha256HexOfFile(dir.path());
     FAIL() << "expected an Error";
