@@ -16,29 +16,6 @@ namespace {
 // tens of microseconds) are not.
 constexpr std::size_t kMinParallelWork = std::size_t{1} << 20;
 
-// The covariance of a (2 half_steps + 1)^2 lattice's translations (row by row from the lowest
-// y), each weighted by exp((score - best) / score_scale).
-Eigen::Matrix2d Spread(const std::vector<double>& scores, double best, double step, int half_steps,
-                       double score_scale) {
-  const int side = 2 * half_steps + 1;
-  double total = 0.0;
-  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-  Eigen::Matrix2d second = Eigen::Matrix2d::Zero();
-  for (int iy = -half_steps; iy <= half_steps; ++iy) {
-    for (int ix = -half_steps; ix <= half_steps; ++ix) {
-      const double score =
-          scores[static_cast<std::size_t>((iy + half_steps) * side + ix + half_steps)];
-      const double w = std::exp((score - best) / score_scale);
-      const Eigen::Vector2d at(ix * step, iy * step);
-      total += w;
-      mean += w * at;
-      second += w * at * at.transpose();
-    }
-  }
-  mean /= total;
-  return second / total - mean * mean.transpose();
-}
-
 // The surface's normal at return j of one scan's returns (beam order) seen from `laser`, turned
 // toward the laser: across the line through its neighbours where they lie within
 // kMaxNeighbourGap, else straight back along the beam.
@@ -234,7 +211,7 @@ void PlaceMatcher::ScoreTranslations(std::span<const Eigen::Vector2d> points, co
 PlaceMatcher::Match PlaceMatcher::Lattice(std::span<const Eigen::Vector2d> points,
                                           const Pose2& center, double step, int half_steps,
                                           double step_theta, int half_steps_theta, int stride,
-                                          double rival_distance, double spread_score) const {
+                                          double rival_distance) const {
   std::vector<Eigen::Vector2d> used;
   for (std::size_t i = 0; i < points.size(); i += static_cast<std::size_t>(stride)) {
     used.push_back(points[i]);
@@ -291,25 +268,22 @@ PlaceMatcher::Match PlaceMatcher::Lattice(std::span<const Eigen::Vector2d> point
       }
     }
     best.distinctness = best.score - rival;
-    if (spread_score > 0.0)
-      best.spread = Spread(best_at, best.score, step, half_steps, spread_score);
   }
   return best;
 }
 
 PlaceMatcher::Match PlaceMatcher::Search(std::span<const Eigen::Vector2d> points,
                                          const Pose2& center, double window, double window_theta,
-                                         double rival_distance, double spread_score) const {
+                                         double rival_distance) const {
   if (field_.empty() || points.empty()) return {center, 0.0};
   const double step = kCoarseStepCells * geometry_.resolution();
   const double step_theta = 0.0175;  // about 1 degree: a 5 m return moves 9 cm
-  const Match coarse = Lattice(points, center, step, static_cast<int>(std::ceil(window / step)),
-                               step_theta, static_cast<int>(std::ceil(window_theta / step_theta)),
-                               2, rival_distance, spread_score);
+  const Match coarse =
+      Lattice(points, center, step, static_cast<int>(std::ceil(window / step)), step_theta,
+              static_cast<int>(std::ceil(window_theta / step_theta)), 2, rival_distance);
   const Match fine = Lattice(points, coarse.pose, step / 4, 4, step_theta / 4, 4, 1);
   Match result = Lattice(points, fine.pose, step / 16, 4, step_theta / 16, 4, 1);
   result.distinctness = coarse.distinctness;
-  result.spread = coarse.spread;
   return result;
 }
 

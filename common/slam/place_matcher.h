@@ -48,25 +48,18 @@ class PlaceMatcher {
     // least `rival_distance` metres away. Near 0, the place matches about as well elsewhere (a
     // corridor along its length, two rooms alike), and the pose found cannot be trusted.
     double distinctness = 0.0;
-    // How far along each direction the place matches about as well: the covariance (m^2) of the
-    // coarse lattice's translations, each weighted by exp((score - best) / spread_score) with
-    // its best score over the headings. Long along a corridor, short across it. Zero when not
-    // asked for.
-    Eigen::Matrix2d spread = Eigen::Matrix2d::Zero();
   };
   // The best pose within +-window (m) and +-window_theta (rad) of `center`: a coarse lattice on
   // every other point, then two finer lattices around the best on all points. Ties go to the
-  // first in lattice order, so the result is deterministic. A spread_score of 0 leaves the
-  // spread zero.
+  // first in lattice order, so the result is deterministic.
   Match Search(std::span<const Eigen::Vector2d> points, const Pose2& center, double window,
-               double window_theta, double rival_distance, double spread_score = 0.0) const;
+               double window_theta, double rival_distance) const;
 
  private:
-  // The best pose of a lattice around `center`; with `rival_distance`, also its distinctness,
-  // and with `spread_score` too, its spread.
+  // The best pose of a lattice around `center`; with `rival_distance`, also its distinctness.
   Match Lattice(std::span<const Eigen::Vector2d> points, const Pose2& center, double step,
                 int half_steps, double step_theta, int half_steps_theta, int stride,
-                double rival_distance = 0.0, double spread_score = 0.0) const;
+                double rival_distance = 0.0) const;
 
   // The coarse lattice's step, in cells.
   static constexpr int kCoarseStepCells = 2;
