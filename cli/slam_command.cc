@@ -50,9 +50,17 @@ struct SlamArgs {
 };
 
 // The parameter's type as CLI11 names an option's value.
-std::string TypeName(const std::string& default_text) {
-  if (default_text.starts_with('"')) return "TEXT";
-  return default_text.find_first_not_of("0123456789") == std::string::npos ? "UINT" : "FLOAT";
+std::string TypeName(const google::protobuf::FieldDescriptor& field) {
+  switch (field.cpp_type()) {
+    case google::protobuf::FieldDescriptor::CPPTYPE_DOUBLE:
+      return "FLOAT";
+    case google::protobuf::FieldDescriptor::CPPTYPE_STRING:
+      return "TEXT";
+    case google::protobuf::FieldDescriptor::CPPTYPE_BOOL:
+      return "BOOL";
+    default:
+      return "UINT";
+  }
 }
 
 // The parameters with `name` set to `text`, checked as a run would check them (the others at
@@ -82,7 +90,7 @@ void AddParamOption(CLI::App* cmd, proto::SlamParams& params, const SlamFlag& f)
   }
   const std::string value = SlamParamText(CompleteSlamParams({}), f.param);
   cmd->add_option_function<std::string>(f.flag, set, f.help + " (default " + value + ")")
-      ->type_name(TypeName(value));
+      ->type_name(TypeName(SlamParamField(f.param)));
 }
 
 // The flags of the SLAM parameters users tune most: those of every run, then each method's.

@@ -409,6 +409,16 @@ evoslam::proto::SlamReport ReadSlamReport(const fs::path& path) {
 
 // The main job: SLAM on a simulated drive, every output written, errors against the truth the
 // simulation logged below odometry's; --local-only runs no global search.
+// The demo's run, `slam` with no input, gives the trajectory it gave when the file was written,
+// to the last bit: a change that alters a result must say so by changing the file
+// (`evoslam slam --out DIR`, then copy DIR/trajectory.txt to tests/data/demo-trajectory.txt).
+TEST_F(CliTest, TheDemosTrajectoryIsPinnedToTheBit) {
+  const Result r = RunCli("slam --out " + Path("demo"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(ReadAll(dir_ / "demo" / "trajectory.txt") == ReadAll(EVOSLAM_DEMO_TRAJECTORY))
+      << "the demo's trajectory differs from " << EVOSLAM_DEMO_TRAJECTORY;
+}
+
 TEST_F(CliTest, SlamMapsASimulatedWorld) {
   const std::string slam =
       "slam --world office-cluster --max-scans 120 --generations 5 --global-every 50 --seed 2";

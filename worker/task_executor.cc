@@ -75,7 +75,7 @@ std::shared_ptr<const Problem> TaskExecutor::ProblemOf(const proto::Task& task) 
   if (spec.kind() == proto::JOB_KIND_LOCALIZE && spec.has_localize()) {
     return LocalizeProblem(task);
   }
-  if (spec.kind() == proto::JOB_KIND_SLAM && spec.has_slam() && spec.has_global_search()) {
+  if (spec.kind() == proto::JOB_KIND_SLAM && spec.has_slam()) {
     return SlamProblem(task);
   }
   throw Error("task " + task.task_id() + ": a problem of kind " + std::to_string(spec.kind()) +

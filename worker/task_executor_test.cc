@@ -127,7 +127,7 @@ TEST_F(SlamTaskTest, ATaskThatDoesNotFitItsLogComesBackAsAnError) {
        },
        "a global search up to scan 160 of a log of 80 scans"},
       {[](proto::ProblemSpec& p) { p.mutable_global_search()->set_first(60); }, "scans [60, 60)"},
-      {[](proto::ProblemSpec& p) { p.clear_global_search(); }, "is not one this worker knows"},
+      {[](proto::ProblemSpec& p) { p.clear_global_search(); }, "names no global search"},
       {[](proto::ProblemSpec& p) {
          p.mutable_slam()->mutable_rss()->mutable_global()->set_partitions(0);
        },

@@ -67,8 +67,8 @@ class CellSet {
 
 // GridCellSet, for many (a stretch of scans, tens of thousands of end points): a bit per cell of
 // the grid. Neighbouring cells share a word, so the points of a wall touch few words where a hash
-// table would scatter them; measured on the Intel log it beats CellSet by a sixth there, while
-// making one for a single scan would cost more than its lookups.
+// table would scatter them (docs/benchmarks.md), while making one for a single scan would cost
+// more than its lookups.
 class GridCellSet {
  public:
   explicit GridCellSet(std::size_t grid_cells) : bits_((grid_cells + 63) / 64, 0) {}

@@ -16,9 +16,8 @@ namespace evoslam {
 // Scans [first, last] of a log repeat the odometry position of scan first - 1, and scan last + 1's
 // odometry moves on from it by `catch_up` (in the frame of the repeated reading). A raw log
 // repeats a reading when the odometry messages were held up while the laser went on, and the
-// next fresh reading then carries all the motion since: the MIT CSAIL log does so three times
-// while driving, once for four scans ending in a step of 0.47 m and 85 degrees. Four more times
-// there only the position is held while the heading reads on, ending in steps of 0.40 to 0.83 m.
+// next fresh reading then carries all the motion since, sometimes tens of centimetres and tens
+// of degrees at once. Some logs hold only the position while the heading reads on.
 struct OdometryStall {
   std::size_t first = 0;
   std::size_t last = 0;

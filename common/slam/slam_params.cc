@@ -186,6 +186,13 @@ void SetSlamParam(proto::SlamParams& params, std::string_view name, std::string_
   }
 }
 
+const pb::FieldDescriptor& SlamParamField(std::string_view name) {
+  proto::SlamParams scratch;
+  const auto found = FindPath(scratch, name);
+  if (!found) throw Error("no SLAM parameter is named '" + std::string(name) + "'");
+  return *found->second;
+}
+
 std::string SlamParamText(const proto::SlamParams& params, std::string_view name) {
   proto::SlamParams copy = params;
   const auto found = FindPath(copy, name);

@@ -1,6 +1,8 @@
 #ifndef EVOSLAM_COMMON_SLAM_SLAM_PARAMS_H_
 #define EVOSLAM_COMMON_SLAM_SLAM_PARAMS_H_
 
+#include <google/protobuf/descriptor.h>
+
 #include <string>
 #include <string_view>
 #include <vector>
@@ -27,6 +29,10 @@ proto::SlamParams WithDefaults(const proto::SlamParams& params);
 // (seed, rss.local.particles). Throws Error naming the parameter when no field has that name or
 // the text is not a value of its type.
 void SetSlamParam(proto::SlamParams& params, std::string_view name, std::string_view text);
+
+// The field of the parameter at the dotted path `name` from the top (rss.local.particles).
+// Throws Error when no field has that name.
+const google::protobuf::FieldDescriptor& SlamParamField(std::string_view name);
 
 // The value of the parameter at the dotted path `name` from the top (rss.local.particles), in
 // text format. Throws Error when no field has that name.

@@ -10,6 +10,7 @@
 
 #include "common/io/file_bytes.h"
 #include "common/util/error.h"
+#include "common/util/error_testing.h"
 #include "common/util/temp_dir.h"
 
 namespace evoslam {
@@ -17,15 +18,7 @@ namespace {
 
 namespace pb = google::protobuf;
 using ::testing::HasSubstr;
-
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::ErrorOf;
 
 // Calls `visit` with the dotted name and descriptor of every scalar field below `d`.
 void ForEachParameter(

@@ -8,20 +8,13 @@
 
 #include "common/slam/slam_params.h"
 #include "common/util/error.h"
+#include "common/util/error_testing.h"
 
 namespace evoslam {
 namespace {
 
 using ::testing::HasSubstr;
-
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::ErrorOf;
 
 TEST(SlamMethodsTest, EveryMethodTheParametersDeclareIsThere) {
   for (const std::string& name : SlamMethodNames()) EXPECT_EQ(FindSlamMethod(name).name(), name);

@@ -21,8 +21,7 @@ namespace {
 constexpr std::uint64_t kHedgeStream = 1000;
 // The second swarm's pose is kept only when eq. 1 counts fewer cells for it than for the first
 // swarm's by more than this share of the scan's beams: two poses refined below a cell differ by a
-// cell or two by chance, and taking those let the local search alone slip on more Intel seeds
-// (docs/methods/rss.md).
+// cell or two by chance (docs/methods/rss.md).
 constexpr double kHedgeWinShare = 0.02;
 
 // Whether a correction lies within 5 % of the cube's face on some axis, where the step's error
