@@ -35,7 +35,7 @@ TEST(OccupancyGridAtPosesTest, ARunTooWideForTheCellsGetsACoarserMap) {
   const Dataset log = Simulate(BuiltinWorld("s-corridor"), sim);
   std::vector<StampedPose> poses = TruePoses(log);
   EXPECT_DOUBLE_EQ(OccupancyGridAtPoses(log, poses, 0.05).resolution(), 0.05);
-  const Pose2 far(600.0, 600.0, 0.0);
+  const Pose2 far(415.0, 415.0, 0.0);
   poses.back().pose = far;
   const OccupancyGrid map = OccupancyGridAtPoses(log, poses, 0.05);
   EXPECT_DOUBLE_EQ(map.resolution(), 0.1);
