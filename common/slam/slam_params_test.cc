@@ -17,8 +17,8 @@ namespace evoslam {
 namespace {
 
 namespace pb = google::protobuf;
-using ::testing::HasSubstr;
 using testing::ErrorOf;
+using ::testing::HasSubstr;
 
 // Calls `visit` with the dotted name and descriptor of every scalar field below `d`.
 void ForEachParameter(

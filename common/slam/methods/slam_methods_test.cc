@@ -13,8 +13,8 @@
 namespace evoslam {
 namespace {
 
-using ::testing::HasSubstr;
 using testing::ErrorOf;
+using ::testing::HasSubstr;
 
 TEST(SlamMethodsTest, EveryMethodTheParametersDeclareIsThere) {
   for (const std::string& name : SlamMethodNames()) EXPECT_EQ(FindSlamMethod(name).name(), name);
