@@ -2,6 +2,7 @@
 
 #include "cli/job_client.h"
 #include "cli/option_parsing.h"
+#include "common/engine/archipelago.h"
 #include "common/engine/presets.h"
 #include "common/localization/localize_params.h"
 #include "common/transform/angle_units.h"
@@ -68,7 +69,7 @@ void AddLocalizeJobOptions(CLI::App* cmd, LocalizeArgs& a, bool with_islands) {
       ->check(CLI::Range(0.0, 1.0));
   if (with_islands) {
     cmd->add_option("--islands", a.islands, "--optimizer island: number of islands")
-        ->check(CLI::Range(1, 4096));
+        ->check(CLI::Range(std::size_t{1}, kMaxIslands));
   }
   cmd->add_option("--island-algorithm", a.island_algorithm,
                   "--optimizer island: the algorithm every island runs")

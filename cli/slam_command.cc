@@ -96,9 +96,7 @@ void AddParamOption(CLI::App* cmd, proto::SlamParams& params, const SlamFlag& f)
 // The flags of the SLAM parameters users tune most: those of every run, then each method's.
 void AddSlamParamOptions(CLI::App* cmd, SlamArgs& a) {
   proto::SlamParams& p = a.params;
-  std::string methods;
-  for (const std::string& name : SlamMethodNames()) methods += (methods.empty() ? "" : ", ") + name;
-  AddParamOption(cmd, p, {"--method", "method", "SLAM method: " + methods, ""});
+  AddParamOption(cmd, p, {"--method", "method", "SLAM method: " + SlamMethodList(), ""});
   AddParamOption(cmd, p, {"--seed", "seed", "random seed, of the simulation too", ""});
   AddParamOption(cmd, p,
                  {"--max-scans", "max_scans",

@@ -16,6 +16,7 @@
 #include "cli/job_client.h"
 #include "cli/localize_args.h"
 #include "cli/service_session.h"
+#include "common/engine/archipelago.h"
 #include "common/util/error.h"
 #include "evoslam/localize.pb.h"
 
@@ -54,8 +55,9 @@ std::vector<std::size_t> ParseCounts(const std::string& text) {
     } catch (const std::exception&) {
       used = 0;
     }
-    if (used != item.size() || n < 1 || n > 4096) {
-      throw CLI::ValidationError("--islands: '" + item + "' is not an island count (1 to 4096)");
+    if (used != item.size() || n < 1 || n > kMaxIslands) {
+      throw CLI::ValidationError("--islands: '" + item + "' is not an island count (1 to " +
+                                 std::to_string(kMaxIslands) + ")");
     }
     counts.push_back(n);
   }

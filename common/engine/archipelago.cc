@@ -61,7 +61,9 @@ bool ImproveBest(const std::vector<Island>& islands, std::vector<double>& best) 
 
 void ValidateIslandModelParams(const IslandModelParams& params) {
   if (params.islands == 0) throw Error("island model: at least one island is needed");
-  if (params.islands > 4096) throw Error("island model: more than 4096 islands");
+  if (params.islands > kMaxIslands) {
+    throw Error("island model: more than " + std::to_string(kMaxIslands) + " islands");
+  }
   ValidateMigrationParams(params.migration, PopulationSize(params.algorithm));
   MakeAlgorithm(params.algorithm);  // validates the algorithm's own parameters
 }

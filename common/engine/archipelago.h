@@ -30,6 +30,9 @@ struct IslandModelParams {
   std::size_t threads = 0;  // 0: one per island, at most omp_get_max_threads()
 };
 
+// The most islands a model may have: beyond them its memory, not its search, grows.
+inline constexpr std::size_t kMaxIslands = 4096;
+
 void ValidateIslandModelParams(const IslandModelParams& params);
 
 // The archipelago between two epochs.

@@ -58,9 +58,7 @@ void SetDefaults(pb::Message& message, const pb::FieldDescriptor* only = nullptr
 const pb::FieldDescriptor& MethodField(const std::string& method) {
   const pb::FieldDescriptor* f = proto::SlamParams::descriptor()->FindFieldByName(method);
   if (f == nullptr || f->cpp_type() != pb::FieldDescriptor::CPPTYPE_MESSAGE) {
-    std::string known;
-    for (const std::string& name : SlamMethodNames()) known += (known.empty() ? "" : ", ") + name;
-    throw Error("method '" + method + "' is not a SLAM method (" + known + ")");
+    throw Error("method '" + method + "' is not a SLAM method (" + SlamMethodList() + ")");
   }
   return *f;
 }
@@ -146,6 +144,12 @@ std::vector<std::string> SlamMethodNames() {
     }
   }
   return names;
+}
+
+std::string SlamMethodList() {
+  std::string list;
+  for (const std::string& name : SlamMethodNames()) list += (list.empty() ? "" : ", ") + name;
+  return list;
 }
 
 void CheckOneMethodsParams(const proto::SlamParams& params) {

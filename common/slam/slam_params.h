@@ -14,6 +14,8 @@ namespace evoslam {
 // The SLAM methods the parameters declare: SlamParams' message fields, each named after its
 // method, in declaration order.
 std::vector<std::string> SlamMethodNames();
+// Those names, comma-separated, for messages.
+std::string SlamMethodList();
 
 // Throws Error when params.method is no method's, listing those there are, or when the
 // parameters of another method than params.method are given.

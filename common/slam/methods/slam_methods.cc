@@ -15,11 +15,7 @@ const SlamMethod& FindSlamMethod(std::string_view name) {
   for (const SlamMethod* method : methods) {
     if (method->name() == name) return *method;
   }
-  std::string known;
-  for (const SlamMethod* method : methods) {
-    known += (known.empty() ? "" : ", ") + std::string(method->name());
-  }
-  throw Error("method '" + std::string(name) + "' is not a SLAM method (" + known + ")");
+  throw Error("method '" + std::string(name) + "' is not a SLAM method (" + SlamMethodList() + ")");
 }
 
 void ValidateSlamParams(const proto::SlamParams& params) {

@@ -14,11 +14,18 @@
 namespace evoslam {
 namespace {
 
+// The rss parameters of a task from the wire, each set, checked before anything is built on them.
+RssSlamParams ValidRssParams(const proto::SlamParams& params) {
+  RssSlamParams rss = WithDefaults(params).rss();
+  ValidateRssSlamParams(rss);
+  return rss;
+}
+
 // A global search as the coordinator built it, with the poses and the base map it refers to.
 // Its members refer to one another: it is built in place and never moved.
 struct GlobalSearchOnBase {
   GlobalSearchOnBase(const Dataset& dataset, const proto::ProblemSpec& spec)
-      : params(WithDefaults(spec.slam()).rss()),
+      : params(ValidRssParams(spec.slam())),
         task(GlobalSearchTaskFromProto(spec.global_search(), poses)),
         base(BaseMapFor(dataset, poses, task.first, task.last, params)),
         problem(MakeGlobalSearchProblem(dataset, task, params.global(), base)) {}

@@ -27,9 +27,8 @@ namespace evoslam {
 // parameter does is in proto/evoslam/slam_params.proto and docs/methods/rss.md.
 using RssSlamParams = proto::RssParams;
 
-// Beyond these a global search's memory and time, not its search, grow.
+// Beyond this a global search's time, not its search, grows.
 inline constexpr std::size_t kMaxGenerations = 1000000;
-inline constexpr std::size_t kMaxIslands = 4096;
 
 // Throws Error naming the first parameter out of its range.
 void ValidateRssSlamParams(const RssSlamParams& params);
