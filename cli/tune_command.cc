@@ -31,7 +31,7 @@ struct TuneArgs {
   std::optional<double> target;
 };
 
-struct Run {
+struct TimedRun {
   double seconds = 0.0;
   double fitness = 0.0;
   std::uint64_t evaluations = 0;
@@ -40,7 +40,7 @@ struct Run {
 struct CountResult {
   std::size_t islands = 0;
   std::size_t pop = 0;
-  std::vector<Run> runs;
+  std::vector<TimedRun> runs;
 };
 
 std::vector<std::size_t> ParseCounts(const std::string& text) {
@@ -115,7 +115,7 @@ void RunTune(const TuneArgs& t) {
   double best = std::numeric_limits<double>::infinity();
   for (const CountResult& r : results) {
     std::vector<double> f;
-    for (const Run& run : r.runs) f.push_back(run.fitness);
+    for (const TimedRun& run : r.runs) f.push_back(run.fitness);
     best = std::min(best, Median(f));
   }
   const double target = t.target.value_or(best + 0.02 * std::abs(best));
@@ -126,7 +126,7 @@ void RunTune(const TuneArgs& t) {
   for (const CountResult& r : results) {
     std::vector<double> seconds, fitness, reached;
     std::uint64_t evaluations = 0;
-    for (const Run& run : r.runs) {
+    for (const TimedRun& run : r.runs) {
       seconds.push_back(run.seconds);
       fitness.push_back(run.fitness);
       evaluations = std::max(evaluations, run.evaluations);

@@ -8,6 +8,16 @@
 set(EVOSLAM_WARNINGS -Wall -Wextra -Wpedantic -Werror)
 if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
   list(APPEND EVOSLAM_WARNINGS -Wno-restrict)
+  # In a unity build a .cc is no longer the main file, and GCC then mistakes a class that holds a
+  # type of that .cc's anonymous namespace for one declared in a header.
+  if(CMAKE_UNITY_BUILD)
+    list(APPEND EVOSLAM_WARNINGS -Wno-subobject-linkage)
+  endif()
+  # The sanitizers' instrumentation defeats GCC's flow analysis, which then reports variables
+  # inside libstdc++ (std::regex, std::function) as maybe used uninitialized.
+  if(EVOSLAM_SANITIZE)
+    list(APPEND EVOSLAM_WARNINGS -Wno-maybe-uninitialized)
+  endif()
 endif()
 # ctest runs test binaries side by side; OpenMP threads that spin while waiting would then steal
 # the cores the other binary's threads need and slow both by an order of magnitude.

@@ -7,6 +7,6 @@ cd "$(dirname "$0")/.."
 ./deploy/build.sh
 ctest --test-dir build --output-on-failure -j"$(nproc)"
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DEVOSLAM_SANITIZE=ON \
-  -DEVOSLAM_BUILD_BENCH=OFF
+  -DEVOSLAM_BUILD_BENCH=OFF -DCMAKE_UNITY_BUILD=ON
 cmake --build build-asan -j"$(nproc)"
 ctest --test-dir build-asan --output-on-failure -j"$(nproc)" -LE accuracy

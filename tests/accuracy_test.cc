@@ -14,11 +14,10 @@
 #include "common/localization/localizer.h"
 #include "common/sim/simulator.h"
 #include "common/sim/world.h"
+#include "common/transform/angle_units.h"
 
 namespace evoslam {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180;
 
 struct StudyRun {
   std::size_t scans = 0;
@@ -54,10 +53,10 @@ TEST_P(StudyEnvironmentTest, CentimetreAccuracyAt20cmNoise) {
   EXPECT_EQ(run.errors.poses, run.scans);
   EXPECT_LE(run.errors.rms_x, 0.02);
   EXPECT_LE(run.errors.rms_y, 0.02);
-  EXPECT_LE(run.errors.rms_theta, 0.5 * kDeg);
+  EXPECT_LE(run.errors.rms_theta, 0.5 * kDegree);
   RecordProperty("rms_x_cm", std::to_string(100 * run.errors.rms_x));
   RecordProperty("rms_y_cm", std::to_string(100 * run.errors.rms_y));
-  RecordProperty("rms_theta_deg", std::to_string(run.errors.rms_theta / kDeg));
+  RecordProperty("rms_theta_deg", std::to_string(run.errors.rms_theta / kDegree));
 }
 
 TEST_P(StudyEnvironmentTest, KeepsTrackAt300cmNoise) {
@@ -88,14 +87,14 @@ TEST_P(StudyOptimizerTest, AccurateAt20cmNoise) {
   const StudyRun run = LocalizeInWorld(world, 0.20, 1, optimizer);
   const bool ga = optimizer == "sga" || optimizer == "aga";
   const double position = ga ? 0.04 : 0.02;
-  const double heading = (ga ? 1.0 : 0.5) * kDeg;
+  const double heading = (ga ? 1.0 : 0.5) * kDegree;
   EXPECT_EQ(run.errors.poses, run.scans);
   EXPECT_LE(run.errors.rms_x, position);
   EXPECT_LE(run.errors.rms_y, position);
   EXPECT_LE(run.errors.rms_theta, heading);
   RecordProperty("rms_x_cm", std::to_string(100 * run.errors.rms_x));
   RecordProperty("rms_y_cm", std::to_string(100 * run.errors.rms_y));
-  RecordProperty("rms_theta_deg", std::to_string(run.errors.rms_theta / kDeg));
+  RecordProperty("rms_theta_deg", std::to_string(run.errors.rms_theta / kDegree));
 }
 
 INSTANTIATE_TEST_SUITE_P(EnvironmentsAB, StudyOptimizerTest,

@@ -1,4 +1,5 @@
 #include "common/grid/distance_transform.h"
+#include "common/util/infinity.h"
 
 #include <algorithm>
 #include <cstddef>
@@ -9,12 +10,11 @@
 namespace evoslam {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
 // One-dimensional, one-sided squared distance transform: out[q] = min over p >= q of
 // (p - q)^2 + f[p]. Samples with f = infinity take no part, so the envelope arithmetic never sees
 // infinities. Sites enter the lower envelope of parabolas from the far end, and each query, at the
-// newest site, finds its parabola by binary search. `sites` and `bounds` are scratch of n and n + 1.
+// newest site, finds its parabola by binary search. `sites` and `bounds` are scratch of n and n
+// + 1.
 void OneSidedTransform1d(const double* f, double* out, int n, std::vector<int>& sites,
                          std::vector<double>& bounds) {
   // In mirrored coordinates u = n - 1 - p the sites arrive in increasing order, and the query at
@@ -23,8 +23,8 @@ void OneSidedTransform1d(const double* f, double* out, int n, std::vector<int>& 
   int k = -1;
   for (int u = 0; u < n; ++u) {
     const double fu = value(u);
-    if (fu != kInf) {
-      double s = -kInf;
+    if (fu != kInfinity) {
+      double s = -kInfinity;
       while (k >= 0) {
         const int p = sites[k];
         s = ((fu + static_cast<double>(u) * u) - (value(p) + static_cast<double>(p) * p)) /
@@ -34,11 +34,11 @@ void OneSidedTransform1d(const double* f, double* out, int n, std::vector<int>& 
       }
       ++k;
       sites[k] = u;
-      bounds[k] = k == 0 ? -kInf : s;
+      bounds[k] = k == 0 ? -kInfinity : s;
     }
     double& o = out[n - 1 - u];
     if (k < 0) {
-      o = kInf;
+      o = kInfinity;
       continue;
     }
     // The last envelope segment that starts at or before u.
@@ -68,7 +68,7 @@ void SquaredQuadrantDistanceTransform(std::span<const std::uint8_t> seeds, int w
   const auto w = static_cast<std::size_t>(width);
   // Up each column (row by row, for the cache): the squared distance to the nearest seed at or
   // above.
-  std::vector<double> nearest(w, kInf);
+  std::vector<double> nearest(w, kInfinity);
   for (int y = height - 1; y >= 0; --y) {
     const std::size_t row = static_cast<std::size_t>(y) * w;
     for (std::size_t x = 0; x < w; ++x) {

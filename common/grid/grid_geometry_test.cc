@@ -7,21 +7,21 @@
 #include <random>
 
 #include "common/util/error.h"
+#include "common/util/infinity.h"
 
 namespace evoslam {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 TEST(GridGeometryTest, RefusesGeometriesThatCannotBe) {
   const Eigen::Vector2d zero = Eigen::Vector2d::Zero();
   EXPECT_THROW(GridGeometry(0.0, zero, 4, 4), Error);
   EXPECT_THROW(GridGeometry(-0.5, zero, 4, 4), Error);
   EXPECT_THROW(GridGeometry(kNaN, zero, 4, 4), Error);
-  EXPECT_THROW(GridGeometry(kInf, zero, 4, 4), Error);
+  EXPECT_THROW(GridGeometry(kInfinity, zero, 4, 4), Error);
   EXPECT_THROW(GridGeometry(0.5, Eigen::Vector2d(0.0, kNaN), 4, 4), Error);
-  EXPECT_THROW(GridGeometry(0.5, Eigen::Vector2d(-kInf, 0.0), 4, 4), Error);
+  EXPECT_THROW(GridGeometry(0.5, Eigen::Vector2d(-kInfinity, 0.0), 4, 4), Error);
   EXPECT_THROW(GridGeometry(0.5, zero, 0, 4), Error);
   EXPECT_THROW(GridGeometry(0.5, zero, 4, -2), Error);
   EXPECT_NO_THROW(GridGeometry(0.5, zero, 1, 1));
@@ -48,7 +48,7 @@ TEST(GridGeometryTest, CellsCoverHalfOpenSquaresFromTheOrigin) {
   EXPECT_FALSE(grid.WorldToCell({0.9999, -2.5}));
   EXPECT_FALSE(grid.WorldToCell({1.5, -3.0001}));
   EXPECT_FALSE(grid.WorldToCell({kNaN, -2.5}));
-  EXPECT_FALSE(grid.WorldToCell({1.5, -kInf}));
+  EXPECT_FALSE(grid.WorldToCell({1.5, -kInfinity}));
   EXPECT_FALSE(grid.WorldToCell({1e300, -2.5}));
   // Row by row from the lowest y.
   EXPECT_EQ(grid.Index(0, 0), 0u);

@@ -10,11 +10,10 @@
 #include "common/grid/distance_transform.h"
 #include "common/util/error.h"
 #include "common/util/finite_checks.h"
+#include "common/util/infinity.h"
 
 namespace evoslam {
 namespace {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 double Logit(double p) { return std::log(p / (1.0 - p)); }
 
@@ -92,18 +91,18 @@ void ForEachCell(const GridSegment& segment, Visit visit) {
   };
   const Eigen::Vector2d& from = segment.from;
   const Eigen::Vector2d& d = segment.delta;
-  double next_x = left_x > 0 ? crossing(x, step_x, from.x(), d.x()) : kInf;
-  double next_y = left_y > 0 ? crossing(y, step_y, from.y(), d.y()) : kInf;
+  double next_x = left_x > 0 ? crossing(x, step_x, from.x(), d.x()) : kInfinity;
+  double next_y = left_y > 0 ? crossing(y, step_y, from.y(), d.y()) : kInfinity;
   visit(x, y);
   while (left_x + left_y > 0) {
     if (left_y == 0 || (left_x > 0 && next_x < next_y)) {
       x += step_x;
       --left_x;
-      next_x = left_x > 0 ? crossing(x, step_x, from.x(), d.x()) : kInf;
+      next_x = left_x > 0 ? crossing(x, step_x, from.x(), d.x()) : kInfinity;
     } else {
       y += step_y;
       --left_y;
-      next_y = left_y > 0 ? crossing(y, step_y, from.y(), d.y()) : kInf;
+      next_y = left_y > 0 ? crossing(y, step_y, from.y(), d.y()) : kInfinity;
     }
     visit(x, y);
   }
@@ -156,8 +155,8 @@ ScanExtent ExtentOf(std::span<const LaserScan> scans, std::span<const Pose2> pos
   if (!IsFiniteNonNegative(margin)) {
     throw Error("occupancy grid: margin must be a non-negative number of metres");
   }
-  Eigen::Vector2d lo = Eigen::Vector2d::Constant(kInf);
-  Eigen::Vector2d hi = Eigen::Vector2d::Constant(-kInf);
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(kInfinity);
+  Eigen::Vector2d hi = Eigen::Vector2d::Constant(-kInfinity);
   for (std::size_t i = 0; i < scans.size(); ++i) {
     const Pose2& pose = poses[i];
     if (!pose.translation().allFinite() || !std::isfinite(pose.theta())) {
@@ -402,7 +401,7 @@ double OccupancyGrid::Cast(double ox, double oy, double dx, double dy, double ma
     t_enter = std::max(t_enter, std::min(a, b));
     t_exit = std::min(t_exit, std::max(a, b));
   } else if (ox < 0.0 || ox > width()) {
-    return kInf;
+    return kInfinity;
   }
   if (dy != 0.0) {
     const double a = (0.0 - oy) * inv_dy;
@@ -410,9 +409,9 @@ double OccupancyGrid::Cast(double ox, double oy, double dx, double dy, double ma
     t_enter = std::max(t_enter, std::min(a, b));
     t_exit = std::min(t_exit, std::max(a, b));
   } else if (oy < 0.0 || oy > height()) {
-    return kInf;
+    return kInfinity;
   }
-  if (!(t_enter <= t_exit)) return kInf;
+  if (!(t_enter <= t_exit)) return kInfinity;
   // Rays from outside start afresh where they enter, so that every distance below stays small
   // and a leap always moves the ray on, however far away the origin was.
   if (t_enter > 0.0) {
@@ -460,7 +459,7 @@ double OccupancyGrid::Cast(double ox, double oy, double dx, double dy, double ma
       if (can_leap(clearance)) {
         do {
           t += clearance * (1.0 / kClearanceScale);
-          if (t >= t_exit) return kInf;
+          if (t >= t_exit) return kInfinity;
           x = static_cast<int>(std::clamp(ox + t * dx, 0.0, last_x));
           y = static_cast<int>(std::clamp(oy + t * dy, 0.0, last_y));
           i = y * stride + x;
@@ -468,15 +467,15 @@ double OccupancyGrid::Cast(double ox, double oy, double dx, double dy, double ma
         } while (can_leap(clearance));
         if (clearance == kOccupiedClearance) {
           // Landed right on an occupied cell's boundary: report where the ray enters it.
-          const double enter_x = dx != 0.0 ? (x + 1.0 - face_x - ox) * inv_dx : -kInf;
-          const double enter_y = dy != 0.0 ? (y + 1.0 - face_y - oy) * inv_dy : -kInf;
+          const double enter_x = dx != 0.0 ? (x + 1.0 - face_x - ox) * inv_dx : -kInfinity;
+          const double enter_y = dy != 0.0 ? (y + 1.0 - face_y - oy) * inv_dy : -kInfinity;
           return t_enter + std::max({enter_x, enter_y, 0.0});
         }
       }
     }
     // Step cell by cell (Amanatides-Woo) until an occupied cell or, with the field, room to leap.
-    double next_x = dx != 0.0 ? (x + face_x - ox) * inv_dx : kInf;
-    double next_y = dy != 0.0 ? (y + face_y - oy) * inv_dy : kInf;
+    double next_x = dx != 0.0 ? (x + face_x - ox) * inv_dx : kInfinity;
+    double next_y = dy != 0.0 ? (y + face_y - oy) * inv_dy : kInfinity;
     while (true) {
       // Written without branches on the axis: which face comes first is a coin toss to the
       // branch predictor.
@@ -489,7 +488,7 @@ double OccupancyGrid::Cast(double ox, double oy, double dx, double dy, double ma
       next_y = along_x ? next_y : (y + face_y - oy) * inv_dy;
       if (t >= t_exit || static_cast<unsigned>(x) >= static_cast<unsigned>(width()) ||
           static_cast<unsigned>(y) >= static_cast<unsigned>(height())) {
-        return kInf;
+        return kInfinity;
       }
       if (occupied(i)) return t_enter + t;
       if constexpr (kUseField) {

@@ -14,11 +14,10 @@
 #include <vector>
 
 #include "common/util/error.h"
+#include "common/util/infinity.h"
 
 namespace evoslam {
 namespace {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 LaserScan MakeScan(double angle_min, double angle_increment, std::vector<float> ranges) {
   LaserScan scan;
@@ -33,8 +32,8 @@ LaserScan MakeScan(double angle_min, double angle_increment, std::vector<float> 
 // Ray parameters (metres along the unit ray) where the ray is inside the box, if it meets it.
 bool RayBox(const Eigen::Vector2d& o, const Eigen::Vector2d& d, const Eigen::Vector2d& lo,
             const Eigen::Vector2d& hi, double& enter, double& exit) {
-  enter = -kInf;
-  exit = kInf;
+  enter = -kInfinity;
+  exit = kInfinity;
   for (int a = 0; a < 2; ++a) {
     if (d[a] == 0.0) {
       if (o[a] < lo[a] || o[a] > hi[a]) return false;
@@ -79,7 +78,7 @@ TEST(OccupancyGridTest, RejectsBadConstruction) {
   EXPECT_THROW(OccupancyGrid(0.0, {0, 0}, 10, 10), Error);
   EXPECT_THROW(OccupancyGrid(-0.1, {0, 0}, 10, 10), Error);
   EXPECT_THROW(OccupancyGrid(std::numeric_limits<double>::quiet_NaN(), {0, 0}, 10, 10), Error);
-  EXPECT_THROW(OccupancyGrid(0.1, {kInf, 0}, 10, 10), Error);
+  EXPECT_THROW(OccupancyGrid(0.1, {kInfinity, 0}, 10, 10), Error);
   EXPECT_THROW(OccupancyGrid(0.1, {0, 0}, 0, 10), Error);
   EXPECT_THROW(OccupancyGrid(0.1, {0, 0}, 10, -1), Error);
   EXPECT_THROW(OccupancyGrid(0.1, {0, 0}, 1 << 14, 1 << 14), Error);
@@ -246,7 +245,7 @@ TEST(OccupancyGridTest, BeamsOutsideGridAreClipped) {
   for (int x = 0; x < 5; ++x) EXPECT_EQ(grid.misses(x, 2), 1u);
   // Beam that never meets the grid.
   grid.InsertScan(MakeScan(0.0, 0.0, {3.0f}), Pose2(-1.0, 5.0, 0.0));
-  EXPECT_THROW(grid.InsertScan(MakeScan(0.0, 0.0, {1.0f}), Pose2(kInf, 0.0, 0.0)), Error);
+  EXPECT_THROW(grid.InsertScan(MakeScan(0.0, 0.0, {1.0f}), Pose2(kInfinity, 0.0, 0.0)), Error);
 }
 
 TEST(OccupancyGridTest, FromScansFitsAllPoints) {
@@ -324,7 +323,7 @@ TEST(OccupancyGridTest, CorridorWallsSeenAtGrazingAnglesStayWhole) {
     for (int i = 0; i <= 180; ++i) {
       const double a = (i - 90) * std::numbers::pi / 180.0;
       const double c = std::cos(a), s = std::sin(a);
-      double r = c > 0.0 ? (kEndWall - x) / c : kInf;
+      double r = c > 0.0 ? (kEndWall - x) / c : kInfinity;
       if (s != 0.0) r = std::min(r, kHalfWidth / std::abs(s));
       ranges.push_back(static_cast<float>(r + range_noise(rng)));
     }
@@ -409,7 +408,7 @@ TEST(OccupancyGridTest, CastRayMatchesBruteForceOnRandomGrids) {
                                                           extent.y() * (1.4 * u(rng) - 0.2));
       double angle = (2.0 * u(rng) - 1.0) * std::numbers::pi;
       if (i % 10 == 0) angle = (i / 10 % 4) * std::numbers::pi / 2;  // axis-aligned
-      const double max_range = i % 7 == 0 ? kInf : 1.5 * extent.norm() * u(rng);
+      const double max_range = i % 7 == 0 ? kInfinity : 1.5 * extent.norm() * u(rng);
       cases.emplace_back(origin, angle, max_range);
     }
     const std::vector<Eigen::Vector2i> occupied = OccupiedCells(grid);
@@ -551,11 +550,11 @@ TEST(OccupancyGridTest, CastRayEdgeCases) {
   // Degenerate arguments come back as max_range.
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(grid.CastRay({nan, 0.5}, 0.0, 3.0), 3.0);
-  EXPECT_EQ(grid.CastRay({0.05, 0.55}, kInf, 3.0), 3.0);
+  EXPECT_EQ(grid.CastRay({0.05, 0.55}, kInfinity, 3.0), 3.0);
   EXPECT_EQ(grid.CastRay({0.05, 0.55}, 0.0, 0.0), 0.0);
   EXPECT_EQ(grid.CastRay({0.05, 0.55}, 0.0, -1.0), -1.0);
   EXPECT_TRUE(std::isnan(grid.CastRay({0.05, 0.55}, 0.0, nan)));
-  EXPECT_EQ(grid.CastRay({0.05, 0.05}, 0.3, kInf), kInf);
+  EXPECT_EQ(grid.CastRay({0.05, 0.05}, 0.3, kInfinity), kInfinity);
 }
 
 TEST(OccupancyGridTest, MutationDropsDistanceFieldAndCastStaysCorrect) {
@@ -582,7 +581,7 @@ TEST(OccupancyGridTest, RoomScanCastsBackToItsRanges) {
   for (int i = 0; i < beams; ++i) {
     const double angle = pose.theta() - std::numbers::pi + i * increment;
     const Eigen::Vector2d d(std::cos(angle), std::sin(angle));
-    double t = kInf;
+    double t = kInfinity;
     if (d.x() > 0) t = std::min(t, (x1 - pose.x()) / d.x());
     if (d.x() < 0) t = std::min(t, (x0 - pose.x()) / d.x());
     if (d.y() > 0) t = std::min(t, (y1 - pose.y()) / d.y());

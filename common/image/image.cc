@@ -69,6 +69,14 @@ Image::Image(int width, int height, Rgb fill) : width_(width), height_(height) {
   pixels_.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), fill);
 }
 
+int CountPixels(const Image& image, Rgb color) {
+  int n = 0;
+  for (int y = 0; y < image.height(); ++y) {
+    for (int x = 0; x < image.width(); ++x) n += image.at(x, y) == color;
+  }
+  return n;
+}
+
 void Image::SetPixel(int x, int y, Rgb color) {
   if (contains(x, y)) at(x, y) = color;
 }

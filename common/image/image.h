@@ -7,6 +7,10 @@
 
 namespace evoslam {
 
+// The readers refuse larger images before allocating, so that a corrupt header cannot exhaust
+// memory.
+inline constexpr std::uint64_t kMaxDecodedPixels = std::uint64_t{1} << 28;
+
 struct Rgb {
   std::uint8_t r = 0;
   std::uint8_t g = 0;
@@ -14,12 +18,14 @@ struct Rgb {
   bool operator==(const Rgb&) const = default;
 };
 
+inline constexpr Rgb kWhite{255, 255, 255};
+
 // An 8-bit RGB raster, row 0 at the top. Drawing clips to the image. Drawing coordinates are in
 // pixels, pixel (x, y) being the unit square centred on (x, y).
 class Image {
  public:
   Image() = default;
-  Image(int width, int height, Rgb fill = {255, 255, 255});
+  Image(int width, int height, Rgb fill = kWhite);
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -38,6 +44,9 @@ class Image {
   int height_ = 0;
   std::vector<Rgb> pixels_;
 };
+
+// How many of the image's pixels have exactly this colour.
+int CountPixels(const Image& image, Rgb color);
 
 // Writes an 8-bit RGB PNG; throws evoslam::Error naming the path on failure.
 void WritePng(const Image& image, const std::filesystem::path& path);

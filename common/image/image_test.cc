@@ -12,7 +12,6 @@
 namespace evoslam {
 namespace {
 
-constexpr Rgb kWhite{255, 255, 255};
 constexpr Rgb kRed{255, 0, 0};
 
 std::set<std::pair<int, int>> PixelsOf(const Image& image, Rgb color) {

@@ -8,13 +8,11 @@
 #include <string>
 #include <utility>
 
+#include "common/image/image.h"
 #include "common/util/error.h"
 
 namespace evoslam {
 namespace {
-
-// Larger images are rejected before allocation, so a corrupt header cannot exhaust memory.
-constexpr std::uint64_t kMaxPixels = std::uint64_t{1} << 28;
 
 // Walks the text parts of a PGM: whitespace-separated decimal numbers with '#' comments,
 // keeping the line number for messages.
@@ -104,9 +102,9 @@ GrayImage ReadPgm(const std::filesystem::path& path) {
   image.height = static_cast<int>(scan.Number("height", kMaxSide));
   if (image.width == 0 || image.height == 0) scan.Fail("width and height must be positive");
   const std::uint64_t pixels = static_cast<std::uint64_t>(image.width) * image.height;
-  if (pixels > kMaxPixels) {
+  if (pixels > kMaxDecodedPixels) {
     scan.Fail("image of " + std::to_string(image.width) + " x " + std::to_string(image.height) +
-              " pixels exceeds the supported " + std::to_string(kMaxPixels));
+              " pixels exceeds the supported " + std::to_string(kMaxDecodedPixels));
   }
   scan.SkipSpaceAndComments();
   const std::size_t maxval_line = scan.line();

@@ -13,9 +13,6 @@
 namespace evoslam {
 namespace {
 
-// Larger images are rejected before allocation, so a corrupt header cannot exhaust memory.
-constexpr std::uint64_t kMaxPixels = std::uint64_t{1} << 28;
-
 // Releases libpng's read state however the read ends; png_image_free is a no-op once
 // png_image_finish_read has already released it.
 class PngImage {
@@ -66,11 +63,12 @@ Image ReadPng(const std::filesystem::path& path) {
   }
   const std::uint64_t width = png.get()->width;
   const std::uint64_t height = png.get()->height;
-  if (width * height > kMaxPixels || width > std::numeric_limits<int>::max() ||
+  if (width * height > kMaxDecodedPixels || width > std::numeric_limits<int>::max() ||
       height > std::numeric_limits<int>::max()) {
     throw InputError(path.string(), 0,
                      "PNG of " + std::to_string(width) + " x " + std::to_string(height) +
-                         " pixels is larger than the supported " + std::to_string(kMaxPixels));
+                         " pixels is larger than the supported " +
+                         std::to_string(kMaxDecodedPixels));
   }
   png.get()->format = PNG_FORMAT_RGB;
   std::vector<std::uint8_t> buffer(width * height * 3);

@@ -11,7 +11,6 @@
 namespace evoslam {
 namespace {
 
-constexpr Rgb kWhite{255, 255, 255};
 constexpr Rgb kBlue{0, 0, 255};
 
 TEST(WorldCanvasTest, SizeCoversBoundsAndMargin) {

@@ -1,4 +1,5 @@
 #include "common/io/carmen_format.h"
+#include "common/transform/angle_units.h"
 
 #include <gtest/gtest.h>
 
@@ -7,13 +8,11 @@
 namespace evoslam {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-
 TEST(CarmenFormatTest, FlaserIncrementFollowsTheBeamCount) {
-  EXPECT_NEAR(FlaserAngleIncrement(180), 1.0 * kDeg, 1e-15);  // -90 .. +89 deg
-  EXPECT_NEAR(FlaserAngleIncrement(181), 1.0 * kDeg, 1e-15);  // -90 .. +90 deg
-  EXPECT_NEAR(FlaserAngleIncrement(361), 0.5 * kDeg, 1e-15);  // -90 .. +90 deg
-  EXPECT_NEAR(FlaserAngleIncrement(360), 0.5 * kDeg, 1e-15);
+  EXPECT_NEAR(FlaserAngleIncrement(180), 1.0 * kDegree, 1e-15);  // -90 .. +89 deg
+  EXPECT_NEAR(FlaserAngleIncrement(181), 1.0 * kDegree, 1e-15);  // -90 .. +90 deg
+  EXPECT_NEAR(FlaserAngleIncrement(361), 0.5 * kDegree, 1e-15);  // -90 .. +90 deg
+  EXPECT_NEAR(FlaserAngleIncrement(360), 0.5 * kDegree, 1e-15);
   EXPECT_EQ(FlaserAngleIncrement(1), 0.0);
   EXPECT_EQ(FlaserAngleIncrement(0), 0.0);
 }
@@ -23,7 +22,7 @@ TEST(CarmenFormatTest, OddCountsEndAtPlusNinetyDegrees) {
     const double last = kFlaserAngleMin + static_cast<double>(n - 1) * FlaserAngleIncrement(n);
     EXPECT_NEAR(last, std::numbers::pi / 2.0, 1e-12) << n;
   }
-  EXPECT_NEAR(kFlaserAngleMin, -90.0 * kDeg, 1e-15);
+  EXPECT_NEAR(kFlaserAngleMin, -90.0 * kDegree, 1e-15);
 }
 
 TEST(CarmenFormatTest, DefaultRangeMaxExcludesTheNoReturnMarkersOfRealLogs) {

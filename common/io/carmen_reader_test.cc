@@ -11,6 +11,7 @@
 #include <string>
 
 #include "common/io/testing_files.h"
+#include "common/transform/angle_units.h"
 #include "common/util/error.h"
 #include "common/util/temp_dir.h"
 
@@ -21,8 +22,6 @@ using io_testing::Bzip2Bytes;
 using io_testing::GzipBytes;
 using io_testing::WriteBytes;
 using ::testing::HasSubstr;
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 // Beam i of the test scans reads 1 + i/100 m, written with 2 decimals.
 std::string RangeText(std::size_t i) { return fmt::format("{:.2f}", 1.0 + i / 100.0); }
@@ -112,14 +111,14 @@ TEST(CarmenReaderTest, BeamGeometrySpansTheHalfCircle) {
       dir, FlaserLine(180, 1) + "\n" + FlaserLine(181, 2) + "\n" + FlaserLine(361, 3) + "\n"));
   ASSERT_EQ(d.scans.size(), 3u);
   // 180 beams: 1 deg apart from -90 to +89 deg.
-  EXPECT_NEAR(d.scans[0].angle(0), -90 * kDeg, 1e-12);
-  EXPECT_NEAR(d.scans[0].angle_increment, 1 * kDeg, 1e-12);
-  EXPECT_NEAR(d.scans[0].angle(179), 89 * kDeg, 1e-12);
+  EXPECT_NEAR(d.scans[0].angle(0), -90 * kDegree, 1e-12);
+  EXPECT_NEAR(d.scans[0].angle_increment, 1 * kDegree, 1e-12);
+  EXPECT_NEAR(d.scans[0].angle(179), 89 * kDegree, 1e-12);
   // 181 and 361 beams include both ends.
-  EXPECT_NEAR(d.scans[1].angle(0), -90 * kDeg, 1e-12);
-  EXPECT_NEAR(d.scans[1].angle(180), 90 * kDeg, 1e-12);
-  EXPECT_NEAR(d.scans[2].angle_increment, 0.5 * kDeg, 1e-12);
-  EXPECT_NEAR(d.scans[2].angle(360), 90 * kDeg, 1e-12);
+  EXPECT_NEAR(d.scans[1].angle(0), -90 * kDegree, 1e-12);
+  EXPECT_NEAR(d.scans[1].angle(180), 90 * kDegree, 1e-12);
+  EXPECT_NEAR(d.scans[2].angle_increment, 0.5 * kDegree, 1e-12);
+  EXPECT_NEAR(d.scans[2].angle(360), 90 * kDegree, 1e-12);
   EXPECT_NEAR(d.scans[2].angle(180), 0.0, 1e-12);
 }
 
@@ -164,13 +163,13 @@ TEST(CarmenReaderTest, ReadsRobotLaserWithItsOwnGeometry) {
   const std::string line = fmt::format(
       "ROBOTLASER1 0 {} {} {} 30.0 0.01 0 5 1.0 2.0 3.0 4.0 5.0 2 0.5 0.6 "
       "7 8 0.3 7.1 8.2 0.4 0.1 0.2 1 2 1000000 55.5 robot 56.5",
-      -45 * kDeg, 90 * kDeg, 22.5 * kDeg);
+      -45 * kDegree, 90 * kDegree, 22.5 * kDegree);
   const Dataset d = ReadCarmen(WriteLog(dir, line + "\n"));
   ASSERT_EQ(d.scans.size(), 1u);
   const LaserScan& s = d.scans[0];
   EXPECT_EQ(s.message, LaserMessage::kRobotLaser);
-  EXPECT_NEAR(s.angle_min, -45 * kDeg, 1e-12);
-  EXPECT_NEAR(s.angle_increment, 22.5 * kDeg, 1e-12);
+  EXPECT_NEAR(s.angle_min, -45 * kDegree, 1e-12);
+  EXPECT_NEAR(s.angle_increment, 22.5 * kDegree, 1e-12);
   EXPECT_EQ(s.range_max, 30.0);
   EXPECT_EQ(s.range_min, 0.0);
   EXPECT_THAT(s.ranges, ::testing::ElementsAre(1.0F, 2.0F, 3.0F, 4.0F, 5.0F));
@@ -327,7 +326,7 @@ TEST(CarmenReaderRealDataTest, IntelLog) {
   std::size_t beams = 0;
   for (const LaserScan& s : d.scans) {
     ASSERT_EQ(s.size(), 180u);
-    ASSERT_NEAR(s.angle_increment, 1 * kDeg, 1e-12);
+    ASSERT_NEAR(s.angle_increment, 1 * kDegree, 1e-12);
     for (std::size_t i = 0; i < s.size(); ++i) returns += s.is_return(i) ? 1 : 0;
     beams += s.size();
   }
@@ -348,7 +347,7 @@ TEST(CarmenReaderRealDataTest, MitCsailLogHas361Beams) {
   EXPECT_TRUE(d.odometry.empty());
   for (const LaserScan& s : d.scans) {
     ASSERT_EQ(s.size(), 361u);
-    ASSERT_NEAR(s.angle(360), 90 * kDeg, 1e-12);
+    ASSERT_NEAR(s.angle(360), 90 * kDegree, 1e-12);
   }
 }
 

@@ -13,6 +13,7 @@
 #include "common/line_map/segment_geometry.h"
 #include "common/util/error.h"
 #include "common/util/finite_checks.h"
+#include "common/util/infinity.h"
 
 namespace evoslam {
 namespace {
@@ -150,7 +151,6 @@ double LineMap::CastRay(const Eigen::Vector2d& origin, const Eigen::Vector2d& di
   const double gy0 = grid_origin_.y();
   const double gx1 = gx0 + cols_ * cell_size_;
   const double gy1 = gy0 + rows_ * cell_size_;
-  constexpr double kInf = std::numeric_limits<double>::infinity();
 
   // A ray from outside is clipped to the grid and starts in the cell where it enters; from
   // inside, the walk ends when it leaves the grid.
@@ -173,14 +173,14 @@ double LineMap::CastRay(const Eigen::Vector2d& origin, const Eigen::Vector2d& di
   int iy = CellIndex(oy + t_enter * dy, gy0, inv_cell_size_, rows_);
   const int step_x = dx > 0.0 ? 1 : -1;
   const int step_y = dy > 0.0 ? 1 : -1;
-  const double t_delta_x = dx != 0.0 ? cell_size_ / std::abs(dx) : kInf;
-  const double t_delta_y = dy != 0.0 ? cell_size_ / std::abs(dy) : kInf;
+  const double t_delta_x = dx != 0.0 ? cell_size_ / std::abs(dx) : kInfinity;
+  const double t_delta_y = dy != 0.0 ? cell_size_ / std::abs(dy) : kInfinity;
   double t_max_x = dx > 0.0   ? (gx0 + (ix + 1) * cell_size_ - ox) / dx
                    : dx < 0.0 ? (gx0 + ix * cell_size_ - ox) / dx
-                              : kInf;
+                              : kInfinity;
   double t_max_y = dy > 0.0   ? (gy0 + (iy + 1) * cell_size_ - oy) / dy
                    : dy < 0.0 ? (gy0 + iy * cell_size_ - oy) / dy
-                              : kInf;
+                              : kInfinity;
 
   const CellWall* const walls = cell_walls_.data();
   const std::uint32_t* const starts = cell_start_.data();

@@ -10,13 +10,12 @@
 #include "common/localization/localizer.h"
 #include "common/localization/ray_fan.h"
 #include "common/localization/test_scenes.h"
+#include "common/transform/angle_units.h"
 #include "common/util/error.h"
 #include "common/util/temp_dir.h"
 
 namespace evoslam {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180;
 
 // A grid of the box room built the way --map-from-log builds one: noiseless scans inserted at
 // their true poses along a loop through the room.
@@ -25,7 +24,7 @@ OccupancyGrid BoxRoomGrid(double resolution) {
   std::vector<LaserScan> scans;
   std::vector<Pose2> poses;
   for (int i = 0; i < 72; ++i) {
-    const double a = i * 5 * kDeg;
+    const double a = i * 5 * kDegree;
     const Pose2 p(3.0 + 1.2 * std::cos(a), 4.0 + 2.0 * std::sin(a), a + std::numbers::pi / 2);
     scans.push_back(testing::ScanFrom(map, p));
     poses.push_back(p);
@@ -37,7 +36,7 @@ TEST(MapModelTest, GridRendererAgreesWithTheWalls) {
   const LineMap walls = testing::BoxRoom();
   const MapModel lines(walls);
   const MapModel grid(BoxRoomGrid(0.02));
-  const RayFan fan(-std::numbers::pi, 0.5 * kDeg, 720);
+  const RayFan fan(-std::numbers::pi, 0.5 * kDegree, 720);
   std::vector<float> from_lines(fan.size()), from_grid(fan.size());
   for (const Eigen::Vector2d& origin : {Eigen::Vector2d(3.0, 4.0), Eigen::Vector2d(2.2, 2.5)}) {
     lines.LocalRenderer(origin, 8.5)->Render(origin, fan, 8.0f, from_lines);
@@ -66,7 +65,7 @@ TEST(MapModelTest, LocalizesInAGridMap) {
   for (std::size_t i = 0; i < d.scans.size(); ++i) {
     const Pose2& truth = *d.scans[i].true_pose;
     EXPECT_LT((r.trajectory[i].pose.translation() - truth.translation()).norm(), 0.03) << i;
-    EXPECT_NEAR(WrapAngle(r.trajectory[i].pose.theta() - truth.theta()), 0.0, 1.0 * kDeg) << i;
+    EXPECT_NEAR(WrapAngle(r.trajectory[i].pose.theta() - truth.theta()), 0.0, 1.0 * kDegree) << i;
   }
 }
 

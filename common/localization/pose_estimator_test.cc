@@ -11,12 +11,11 @@
 #include "common/localization/localizer.h"
 #include "common/localization/segment_renderer.h"
 #include "common/localization/test_scenes.h"
+#include "common/transform/angle_units.h"
 #include "common/util/error.h"
 
 namespace evoslam {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180;
 
 using Combo = std::tuple<FitnessKind, EstimatorKind, std::string>;
 
@@ -28,12 +27,12 @@ TEST_P(EstimatePoseTest, FindsTruePoseInWindow) {
   const LineMap map = testing::BoxRoom();
   const Pose2 truth(2.7, 3.4, 1.1);
   const LaserScan scan = testing::ScanFrom(map, truth);
-  const Pose2 center(2.7 - 0.08, 3.4 + 0.09, 1.1 - 2 * kDeg);
+  const Pose2 center(2.7 - 0.08, 3.4 + 0.09, 1.1 - 2 * kDegree);
   EstimatorParams params;
   params.fitness.kind = fitness;
   params.estimator = estimator;
   params.optimizer = ParseOptimizer(optimizer, params.algorithm);
-  params.heading_half_window = 10 * kDeg;
+  params.heading_half_window = 10 * kDegree;
   if (estimator == EstimatorKind::k3D) {
     // A 3D search needs a larger budget (the papers' observation); exhaustive in 3D is slow, so
     // its lattice is coarser here.
@@ -51,7 +50,7 @@ TEST_P(EstimatePoseTest, FindsTruePoseInWindow) {
   const double tol = f2 ? 0.03 : 0.011;
   EXPECT_NEAR(e.pose.x(), truth.x(), tol);
   EXPECT_NEAR(e.pose.y(), truth.y(), tol);
-  EXPECT_NEAR(WrapAngle(e.pose.theta() - truth.theta()), 0.0, (f2 ? 1.0 : 0.3) * kDeg);
+  EXPECT_NEAR(WrapAngle(e.pose.theta() - truth.theta()), 0.0, (f2 ? 1.0 : 0.3) * kDegree);
   EXPECT_GT(e.evaluations, 0u);
 }
 
@@ -110,7 +109,7 @@ TEST(LocalizeTest, TracksAWalkWithoutOdometry) {
     const double err = (r.trajectory[i].pose.translation() - t.translation()).norm();
     sum_sq += err * err;
     EXPECT_LT(err, 0.02) << i;
-    EXPECT_NEAR(WrapAngle(r.trajectory[i].pose.theta() - t.theta()), 0, 0.5 * kDeg) << i;
+    EXPECT_NEAR(WrapAngle(r.trajectory[i].pose.theta() - t.theta()), 0, 0.5 * kDegree) << i;
     EXPECT_EQ(r.trajectory[i].timestamp, d.scans[i].timestamp);
   }
   EXPECT_LT(std::sqrt(sum_sq / 30), 0.01);

@@ -6,34 +6,33 @@
 
 #include "common/localization/segment_renderer.h"
 #include "common/localization/test_scenes.h"
+#include "common/transform/angle_units.h"
 #include "common/util/error.h"
 
 namespace evoslam {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180;
-
 TEST(ShiftLayoutTest, HalfDegreeBeamsAndHeadingSteps) {
   LaserScan scan;
-  scan.angle_min = -90 * kDeg;
-  scan.angle_increment = 0.5 * kDeg;
+  scan.angle_min = -90 * kDegree;
+  scan.angle_increment = 0.5 * kDegree;
   scan.ranges.assign(361, 1.0f);
-  const ShiftLayout l = MakeShiftLayout(scan, 30 * kDeg, 0.5 * kDeg);
+  const ShiftLayout l = MakeShiftLayout(scan, 30 * kDegree, 0.5 * kDegree);
   EXPECT_EQ(l.shifts, 121u);
   EXPECT_EQ(l.beam_stride, 1u);
   EXPECT_EQ(l.shift_stride, 1u);
   EXPECT_EQ(l.rays, 481u);  // 240 degrees of rays
-  EXPECT_NEAR(l.first_offset, -120 * kDeg, 1e-12);
-  EXPECT_NEAR(l.shift_angle(0), -30 * kDeg, 1e-12);
-  EXPECT_NEAR(l.shift_angle(120), 30 * kDeg, 1e-12);
+  EXPECT_NEAR(l.first_offset, -120 * kDegree, 1e-12);
+  EXPECT_NEAR(l.shift_angle(0), -30 * kDegree, 1e-12);
+  EXPECT_NEAR(l.shift_angle(120), 30 * kDegree, 1e-12);
 }
 
 TEST(ShiftLayoutTest, OneDegreeBeamsInterleaveHalfDegreeHeadings) {
   LaserScan scan;
-  scan.angle_min = -90 * kDeg;
-  scan.angle_increment = 1 * kDeg;
+  scan.angle_min = -90 * kDegree;
+  scan.angle_increment = 1 * kDegree;
   scan.ranges.assign(180, 1.0f);
-  const ShiftLayout l = MakeShiftLayout(scan, 10 * kDeg, 0.5 * kDeg);
+  const ShiftLayout l = MakeShiftLayout(scan, 10 * kDegree, 0.5 * kDegree);
   EXPECT_EQ(l.beam_stride, 2u);
   EXPECT_EQ(l.shift_stride, 1u);
   EXPECT_EQ(l.shifts, 41u);
@@ -42,18 +41,18 @@ TEST(ShiftLayoutTest, OneDegreeBeamsInterleaveHalfDegreeHeadings) {
 
 TEST(ShiftLayoutTest, FineBeamsUseSeveralRaysPerHeadingStep) {
   LaserScan scan;
-  scan.angle_increment = 0.25 * kDeg;
+  scan.angle_increment = 0.25 * kDegree;
   scan.ranges.assign(721, 1.0f);
-  const ShiftLayout l = MakeShiftLayout(scan, 5 * kDeg, 0.5 * kDeg);
+  const ShiftLayout l = MakeShiftLayout(scan, 5 * kDegree, 0.5 * kDegree);
   EXPECT_EQ(l.shift_stride, 2u);
   EXPECT_EQ(l.shifts, 21u);
-  EXPECT_NEAR(l.shift_angle(20) - l.shift_angle(19), 0.5 * kDeg, 1e-12);
+  EXPECT_NEAR(l.shift_angle(20) - l.shift_angle(19), 0.5 * kDegree, 1e-12);
 }
 
 TEST(ShiftLayoutTest, RejectsUnusableScans) {
   LaserScan scan;
   scan.ranges.assign(1, 1.0f);
-  scan.angle_increment = kDeg;
+  scan.angle_increment = kDegree;
   EXPECT_THROW(MakeShiftLayout(scan, 0.1, 0.01), Error);
 }
 
@@ -62,9 +61,9 @@ class BestShiftTest : public ::testing::TestWithParam<FitnessKind> {};
 // A scan taken at heading h + 7.5 degrees is found at shift +15 of a window centred on h.
 TEST_P(BestShiftTest, RecoversHeadingOffset) {
   const LineMap map = testing::BoxRoom();
-  const Pose2 truth(2.5, 3.0, 0.4 + 7.5 * kDeg);
+  const Pose2 truth(2.5, 3.0, 0.4 + 7.5 * kDegree);
   const LaserScan scan = testing::ScanFrom(map, truth);
-  const ShiftLayout layout = MakeShiftLayout(scan, 30 * kDeg, 0.5 * kDeg);
+  const ShiftLayout layout = MakeShiftLayout(scan, 30 * kDegree, 0.5 * kDegree);
   const float max_range = 8.0f;
   const ObservedBeams observed = PrepareObservation(scan, max_range);
   const SegmentRenderer renderer(TemporaryMap(map, truth.translation(), 9.0));
@@ -96,7 +95,7 @@ INSTANTIATE_TEST_SUITE_P(F2AndF3, BestShiftTest,
 
 TEST(ScanFitnessTest, LeavesOutBeamsWithoutReturnOnEitherSide) {
   LaserScan scan;
-  scan.angle_increment = kDeg;
+  scan.angle_increment = kDegree;
   scan.range_max = 8.0;
   scan.ranges = {1.0f, 8.0f, 2.0f, 0.0f};  // beam 1: no return, beam 3: invalid zero
   const ObservedBeams observed = PrepareObservation(scan, 8.0f);
@@ -117,7 +116,7 @@ TEST(ScanFitnessTest, LeavesOutBeamsWithoutReturnOnEitherSide) {
 
 TEST(ScanFitnessTest, F3sCapBoundsEachBeamsTerm) {
   LaserScan scan;
-  scan.angle_increment = kDeg;
+  scan.angle_increment = kDegree;
   scan.range_max = 30.0;
   scan.ranges = {1.0f, 2.0f, 3.0f};
   const ObservedBeams observed = PrepareObservation(scan, 30.0f);
@@ -129,7 +128,7 @@ TEST(ScanFitnessTest, F3sCapBoundsEachBeamsTerm) {
   EXPECT_FLOAT_EQ(ScoreAligned(f3, observed, rays, 30.0f), 0.25f + 0.4f + 0.4f);
 
   // The heading search scores alike: one beam per shift, so each shift's sum is one term.
-  const ShiftLayout layout = MakeShiftLayout(scan, 0.0, kDeg);
+  const ShiftLayout layout = MakeShiftLayout(scan, 0.0, kDegree);
   ASSERT_EQ(layout.shifts, 1u);
   std::vector<float> sums(1);
   EXPECT_FLOAT_EQ(BestShift(f3, layout, observed, rays, 30.0f, sums).fitness, 1.05f);
@@ -142,11 +141,11 @@ TEST(ScanFitnessTest, F3sCapBoundsEachBeamsTerm) {
 // uncapped sum; capped, it counts no more than one beam that misses.
 TEST(ScanFitnessTest, CappedF3KeepsTheHeadingTheRestOfTheScanAgreesOn) {
   LaserScan scan;
-  scan.angle_increment = kDeg;
+  scan.angle_increment = kDegree;
   scan.range_max = 30.0;
   scan.ranges = {2.0f, 2.2f, 2.4f, 2.6f, 2.8f};
   const ObservedBeams observed = PrepareObservation(scan, 30.0f);
-  const ShiftLayout layout = MakeShiftLayout(scan, kDeg, kDeg);
+  const ShiftLayout layout = MakeShiftLayout(scan, kDegree, kDegree);
   ASSERT_EQ(layout.shifts, 3u);
   ASSERT_EQ(layout.rays, 7u);
   // At the centre (beam j reads ray j + 1) four beams fit exactly and the last misses by 4 m;

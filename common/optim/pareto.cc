@@ -1,4 +1,5 @@
 #include "common/optim/pareto.h"
+#include "common/util/infinity.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,13 +10,11 @@
 namespace evoslam {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
 // f with every column that holds a NaN replaced by +infinity, so that comparisons are total.
 Eigen::MatrixXd WithoutNan(const Eigen::Ref<const Eigen::MatrixXd>& f) {
   Eigen::MatrixXd clean = f;
   for (Eigen::Index i = 0; i < clean.cols(); ++i) {
-    if (clean.col(i).hasNaN()) clean.col(i).setConstant(kInf);
+    if (clean.col(i).hasNaN()) clean.col(i).setConstant(kInfinity);
   }
   return clean;
 }
@@ -115,8 +114,8 @@ std::vector<double> CrowdingDistances(const Eigen::Ref<const Eigen::MatrixXd>& f
       });
       const double range = value(front.back()) - value(front.front());
       if (!(range > 0.0)) continue;
-      crowding[front.front()] = kInf;
-      crowding[front.back()] = kInf;
+      crowding[front.front()] = kInfinity;
+      crowding[front.back()] = kInfinity;
       if (!std::isfinite(range)) continue;
       for (std::size_t m = 1; m + 1 < front.size(); ++m)
         crowding[front[m]] += (value(front[m + 1]) - value(front[m - 1])) / range;

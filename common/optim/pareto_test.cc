@@ -8,12 +8,11 @@
 #include <numeric>
 #include <vector>
 
+#include "common/util/infinity.h"
 #include "common/util/random.h"
 
 namespace evoslam {
 namespace {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 Eigen::MatrixXd Columns(std::initializer_list<std::initializer_list<double>> points) {
   const auto rows = static_cast<Eigen::Index>(points.begin()->size());
@@ -75,9 +74,9 @@ TEST(ParetoTest, CrowdingDistancesOfAHandBuiltFront) {
   const ParetoRanking ranking = RankPareto(f);
   EXPECT_EQ(ranking.rank, (std::vector<std::size_t>{0, 0, 0, 0, 0, 1}));
   EXPECT_NEAR(ranking.crowding[0], 0.5 + 0.5, 1e-12);  // (6-1)/10 + (6-1)/10
-  EXPECT_EQ(ranking.crowding[1], kInf);
+  EXPECT_EQ(ranking.crowding[1], kInfinity);
   EXPECT_NEAR(ranking.crowding[2], 0.7 + 0.2, 1e-12);  // (10-3)/10 + (2-0)/10
-  EXPECT_EQ(ranking.crowding[3], kInf);
+  EXPECT_EQ(ranking.crowding[3], kInfinity);
   EXPECT_NEAR(ranking.crowding[4], 0.3 + 0.8, 1e-12);  // (3-0)/10 + (10-2)/10
   EXPECT_EQ(ranking.crowding[5], 0.0);                 // alone in its front
   EXPECT_EQ(ranking.Order(), (std::vector<std::size_t>{1, 3, 4, 0, 2, 5}));
@@ -99,10 +98,10 @@ TEST(ParetoTest, CopiesOfAnExtremeShareItsTwoEnds) {
   // Ties sort by index: the first copy of (0,4) ends f1's order, the second ends f2's.
   const Eigen::MatrixXd f = Columns({{0, 4}, {0, 4}, {2, 2}, {4, 0}});
   const std::vector<double> d = RankPareto(f).crowding;
-  EXPECT_EQ(d[0], kInf);
-  EXPECT_EQ(d[1], kInf);
+  EXPECT_EQ(d[0], kInfinity);
+  EXPECT_EQ(d[1], kInfinity);
   EXPECT_NEAR(d[2], 4.0 / 4.0 + 4.0 / 4.0, 1e-12);
-  EXPECT_EQ(d[3], kInf);
+  EXPECT_EQ(d[3], kInfinity);
 }
 
 TEST(ParetoTest, NanCountsAsWorst) {

@@ -12,14 +12,6 @@
 namespace evoslam {
 namespace {
 
-int CountPixels(const Image& image, Rgb color) {
-  int n = 0;
-  for (int y = 0; y < image.height(); ++y) {
-    for (int x = 0; x < image.width(); ++x) n += image.at(x, y) == color;
-  }
-  return n;
-}
-
 class MapPictureTest : public ::testing::Test {
  protected:
   TempDir dir_;

@@ -118,14 +118,6 @@ class SlamOutputsTest : public ::testing::Test {
   TempDir dir_;
 };
 
-int CountPixels(const Image& image, Rgb color) {
-  int n = 0;
-  for (int y = 0; y < image.height(); ++y) {
-    for (int x = 0; x < image.width(); ++x) n += image.at(x, y) == color;
-  }
-  return n;
-}
-
 TEST_F(SlamOutputsTest, HandsBackTheFilesItsReportLists) {
   const auto files = SlamOutputs(log_, Params(), result_, std::nullopt, 2);
   std::vector<std::string> names;

@@ -7,16 +7,15 @@
 #include <numbers>
 
 #include "common/sensor/dataset.h"
+#include "common/transform/angle_units.h"
 
 namespace evoslam {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180;
-
 LaserScan Scan(std::vector<float> ranges) {
   LaserScan s;
-  s.angle_min = -90 * kDeg;
-  s.angle_increment = 1 * kDeg;
+  s.angle_min = -90 * kDegree;
+  s.angle_increment = 1 * kDegree;
   s.range_max = 8.0;
   s.ranges = std::move(ranges);
   return s;
@@ -24,10 +23,10 @@ LaserScan Scan(std::vector<float> ranges) {
 
 TEST(LaserScanTest, BeamAnglesAndFieldOfView) {
   const LaserScan s = Scan(std::vector<float>(181, 1.0f));
-  EXPECT_DOUBLE_EQ(s.angle(0), -90 * kDeg);
+  EXPECT_DOUBLE_EQ(s.angle(0), -90 * kDegree);
   EXPECT_NEAR(s.angle(90), 0.0, 1e-15);
-  EXPECT_NEAR(s.angle(180), 90 * kDeg, 1e-12);
-  EXPECT_NEAR(s.field_of_view(), 180 * kDeg, 1e-12);
+  EXPECT_NEAR(s.angle(180), 90 * kDegree, 1e-12);
+  EXPECT_NEAR(s.field_of_view(), 180 * kDegree, 1e-12);
   EXPECT_EQ(Scan({}).field_of_view(), 0.0);
 }
 

@@ -5,16 +5,15 @@
 #include <cmath>
 #include <numbers>
 
+#include "common/sim/sim_testing.h"
 #include "common/util/error.h"
 
 namespace evoslam {
 namespace {
 
-using std::numbers::pi;
+using testing::Room;
 
-LineMap Room(double w, double h) {
-  return LineMap({{{0, 0}, {w, 0}}, {{w, 0}, {w, h}}, {{w, h}, {0, h}}, {{0, h}, {0, 0}}});
-}
+using std::numbers::pi;
 
 TEST(CrowdTest, WalksClearOfWallsAtItsSpeed) {
   const LineMap room = Room(8, 6);

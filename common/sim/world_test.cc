@@ -1,4 +1,5 @@
 #include "common/sim/world.h"
+#include "common/sim/sim_testing.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -12,13 +13,11 @@
 namespace evoslam {
 namespace {
 
+using testing::Room;
+
 using ::testing::HasSubstr;
 
 Eigen::Vector2d Size(const World& world) { return world.map.bounds().max - world.map.bounds().min; }
-
-LineMap Room(double w, double h) {
-  return LineMap({{{0, 0}, {w, 0}}, {{w, 0}, {w, h}}, {{w, h}, {0, h}}, {{0, h}, {0, 0}}});
-}
 
 TEST(WorldTest, EveryBuiltinWorldBuilds) {
   const std::vector<std::string> names = BuiltinWorldNames();

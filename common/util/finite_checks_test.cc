@@ -1,4 +1,5 @@
 #include "common/util/finite_checks.h"
+#include "common/util/infinity.h"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +8,6 @@
 namespace evoslam {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 constexpr double kTiny = std::numeric_limits<double>::denorm_min();
 
@@ -18,8 +18,8 @@ TEST(FiniteChecksTest, NonNegativeTakesZeroAndFinitePositives) {
   EXPECT_TRUE(IsFiniteNonNegative(std::numeric_limits<double>::max()));
   EXPECT_FALSE(IsFiniteNonNegative(-kTiny));
   EXPECT_FALSE(IsFiniteNonNegative(-1.0));
-  EXPECT_FALSE(IsFiniteNonNegative(kInf));
-  EXPECT_FALSE(IsFiniteNonNegative(-kInf));
+  EXPECT_FALSE(IsFiniteNonNegative(kInfinity));
+  EXPECT_FALSE(IsFiniteNonNegative(-kInfinity));
   EXPECT_FALSE(IsFiniteNonNegative(kNan));
   EXPECT_FALSE(IsFiniteNonNegative(-kNan));
 }
@@ -30,7 +30,7 @@ TEST(FiniteChecksTest, PositiveRefusesZero) {
   EXPECT_FALSE(IsFinitePositive(0.0));
   EXPECT_FALSE(IsFinitePositive(-0.0));
   EXPECT_FALSE(IsFinitePositive(-1.0));
-  EXPECT_FALSE(IsFinitePositive(kInf));
+  EXPECT_FALSE(IsFinitePositive(kInfinity));
   EXPECT_FALSE(IsFinitePositive(kNan));
 }
 

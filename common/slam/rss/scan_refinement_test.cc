@@ -34,7 +34,7 @@ std::vector<Eigen::Vector2d> RoomReturns(const Pose2& pose) {
 // Two long parallel walls, each at the centre of a row of 5 cm cells, and a map of them in which
 // each wall fills its row once.
 constexpr double kCorridorWall = 1.025;
-LineMap Corridor() {
+LineMap CorridorWalls() {
   return LineMap(std::vector<Segment>{{{-20.0, -kCorridorWall}, {20.0, -kCorridorWall}},
                                       {{-20.0, kCorridorWall}, {20.0, kCorridorWall}}});
 }
@@ -193,7 +193,7 @@ TEST(RefineScanPoseTest, AHeadingNearPiDoesNotWrapIntoTheLimit) {
 // The corridor and a laser too short to see an end: the scan fixes the pose across the corridor
 // and its heading, and nothing along it.
 TEST(RefineScanPoseTest, AlongACorridorThePoseKeepsItsPlace) {
-  const LineMap corridor = Corridor();
+  const LineMap corridor = CorridorWalls();
   const HitCountGrid map = CorridorMap();
   const Pose2 truth(0.3, 0.0, 0.0);
   const std::vector<Eigen::Vector2d> returns =
@@ -210,7 +210,7 @@ TEST(RefineScanPoseTest, AlongACorridorThePoseKeepsItsPlace) {
 // off by 2 cm across the corridor has nothing to follow; against the strongest count, each wall
 // peaks along its middle and the refinement finds it.
 TEST(RefineScanPoseTest, AcrossAThickWallThePoseFollowsTheCountsToItsMiddle) {
-  const LineMap corridor = Corridor();
+  const LineMap corridor = CorridorWalls();
   HitCountGrid map(0.05, Eigen::Vector2d(-5.0, -3.0), 200, 120);
   for (int x = 0; x < map.width(); ++x) {
     for (const double y : {-kCorridorWall, kCorridorWall}) {
@@ -235,7 +235,7 @@ TEST(RefineScanPoseTest, AcrossAThickWallThePoseFollowsTheCountsToItsMiddle) {
 // offset across the corridor and in heading, which the scan measures, and takes the prior's
 // place along it, which the scan cannot measure.
 TEST(KeepPriorWhereUnconstrainedTest, AlongACorridorThePriorsPlaceIsTaken) {
-  const LineMap corridor = Corridor();
+  const LineMap corridor = CorridorWalls();
   const HitCountGrid map = CorridorMap();
   const Pose2 pose(0.45, 0.02, 0.004);
   const Pose2 prior(0.3, 0.0, 0.0);

@@ -9,13 +9,12 @@
 #include "common/localization/test_scenes.h"
 #include "common/optim/evolve.h"
 #include "common/slam/slam_testing.h"
+#include "common/transform/angle_units.h"
 #include "common/util/error.h"
 #include "common/util/random.h"
 
 namespace evoslam {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 Eigen::Vector3d AsVector(const Pose2& p) { return {p.x(), p.y(), p.theta()}; }
 
@@ -42,16 +41,16 @@ class StepCorrectionTest : public ::testing::TestWithParam<LocalFitness> {};
 
 TEST_P(StepCorrectionTest, TheTrueCorrectionScoresBestAndPsoFindsIt) {
   const Scene s = MakeScene();
-  const Pose2 odometry_error(0.12, -0.08, 3.0 * kDeg);
+  const Pose2 odometry_error(0.12, -0.08, 3.0 * kDegree);
   const Pose2 predicted = s.next_pose * odometry_error;
   const StepCorrectionProblem problem(s.map, s.next, predicted,
-                                      Eigen::Vector3d(0.2, 0.2, 5.0 * kDeg), GetParam());
+                                      Eigen::Vector3d(0.2, 0.2, 5.0 * kDegree), GetParam());
   const Eigen::Vector3d truth = AsVector(odometry_error.inverse());
   EXPECT_LT((AsVector(problem.Corrected(truth)) - AsVector(s.next_pose)).norm(), 1e-12);
   const double at_truth = problem.Score(truth);
   EXPECT_LT(at_truth, problem.Score(Eigen::Vector3d::Zero()));
-  for (const Eigen::Vector3d& off :
-       {Eigen::Vector3d(0.1, 0, 0), Eigen::Vector3d(0, -0.1, 0), Eigen::Vector3d(0, 0, 2 * kDeg)}) {
+  for (const Eigen::Vector3d& off : {Eigen::Vector3d(0.1, 0, 0), Eigen::Vector3d(0, -0.1, 0),
+                                     Eigen::Vector3d(0, 0, 2 * kDegree)}) {
     EXPECT_LT(at_truth, problem.Score(truth + off)) << off.transpose();
   }
   // Evaluate agrees with Score, whatever the batch.
@@ -74,7 +73,7 @@ TEST_P(StepCorrectionTest, TheTrueCorrectionScoresBestAndPsoFindsIt) {
   const OptimResult r = Minimize(problem, *pso, stop, rng);
   const Pose2 found = problem.Corrected(r.best);
   EXPECT_LT((found.translation() - s.next_pose.translation()).norm(), 0.05);
-  EXPECT_LT(std::abs(WrapAngle(found.theta() - s.next_pose.theta())), 1.0 * kDeg);
+  EXPECT_LT(std::abs(WrapAngle(found.theta() - s.next_pose.theta())), 1.0 * kDegree);
 }
 
 // Eqs. 1 and 2 as the paper writes them, nothing spared: every end point placed with Pose2, the
@@ -94,7 +93,7 @@ TEST_P(StepCorrectionTest, ScoresRandomCandidatesToTheBitAsTheEquationsAreWritte
   // The map cut short of the wall at x = 6, so that some end points fall off the grid.
   const Scene s = MakeScene(130);
   const HitCountGrid& map = s.map;
-  const Pose2 predicted = s.next_pose * Pose2(0.12, -0.08, 3.0 * kDeg);
+  const Pose2 predicted = s.next_pose * Pose2(0.12, -0.08, 3.0 * kDegree);
   ASSERT_GT(HitCountGrid(map).AddScan(s.next, predicted), 0u);
   const StepCorrectionProblem problem(map, s.next, predicted, Eigen::Vector3d(0.3, 0.3, 0.2),
                                       GetParam());
@@ -142,8 +141,8 @@ Corridor MakeCorridor() {
 // The correction PSO finds along the corridor, for a step odometry gets right.
 double ShiftAlongCorridor(const Corridor& c, double pull, std::uint64_t seed) {
   const StepCorrectionProblem problem(c.map, c.next, c.next_pose,
-                                      Eigen::Vector3d(0.1, 0.1, 3.0 * kDeg), LocalFitness::kEval1,
-                                      pull);
+                                      Eigen::Vector3d(0.1, 0.1, 3.0 * kDegree),
+                                      LocalFitness::kEval1, pull);
   AlgorithmSpec spec;
   spec.kind = AlgorithmKind::kPso;
   spec.pso.particles = 10;
@@ -167,8 +166,8 @@ TEST(StepCorrectionProblemTest, OdometryPullKeepsAStepAlongACorridorWhereOdometr
 
 TEST(StepCorrectionProblemTest, OdometryPullAddsUnderOneCellAndNeverOutweighsABetterFit) {
   const Scene s = MakeScene();
-  const Eigen::Vector3d cube(0.2, 0.2, 5.0 * kDeg);
-  const Pose2 predicted = s.next_pose * Pose2(0.12, -0.08, 3.0 * kDeg);
+  const Eigen::Vector3d cube(0.2, 0.2, 5.0 * kDegree);
+  const Pose2 predicted = s.next_pose * Pose2(0.12, -0.08, 3.0 * kDegree);
   const StepCorrectionProblem plain(s.map, s.next, predicted, cube, LocalFitness::kEval1);
   const StepCorrectionProblem pulled(s.map, s.next, predicted, cube, LocalFitness::kEval1, 0.9);
   Rng rng(7);
@@ -181,7 +180,7 @@ TEST(StepCorrectionProblemTest, OdometryPullAddsUnderOneCellAndNeverOutweighsABe
   }
   EXPECT_EQ(pulled.Score(Eigen::Vector3d::Zero()), plain.Score(Eigen::Vector3d::Zero()));
   // The true correction fits better by whole cells, so the pull leaves it the best.
-  const Eigen::Vector3d truth = AsVector(Pose2(0.12, -0.08, 3.0 * kDeg).inverse());
+  const Eigen::Vector3d truth = AsVector(Pose2(0.12, -0.08, 3.0 * kDegree).inverse());
   EXPECT_LT(pulled.Score(truth), pulled.Score(Eigen::Vector3d::Zero()));
   EXPECT_THROW(StepCorrectionProblem(s.map, s.next, predicted, cube, LocalFitness::kEval1, -0.1),
                Error);
