@@ -61,6 +61,14 @@ bool ClipSegment(double& x0, double& y0, double& x1, double& y1, double lo_x, do
 
 }  // namespace
 
+Rgb Blend(Rgb from, Rgb to, double t) {
+  t = std::clamp(t, 0.0, 1.0);
+  const auto channel = [t](std::uint8_t a, std::uint8_t b) {
+    return static_cast<std::uint8_t>(std::lround(a + t * (b - a)));
+  };
+  return {channel(from.r, to.r), channel(from.g, to.g), channel(from.b, to.b)};
+}
+
 Image::Image(int width, int height, Rgb fill) : width_(width), height_(height) {
   if (width < 0 || height < 0) {
     throw Error("image size must not be negative, got " + std::to_string(width) + " x " +
@@ -136,6 +144,29 @@ void Image::DrawDisc(double cx, double cy, double radius, Rgb color) {
   for (int y = static_cast<int>(y_lo); y <= static_cast<int>(y_hi); ++y) {
     for (int x = static_cast<int>(x_lo); x <= static_cast<int>(x_hi); ++x) {
       if (std::hypot(x - cx, y - cy) <= radius) at(x, y) = color;
+    }
+  }
+}
+
+void Image::FillRect(int x, int y, int width, int height, Rgb color) {
+  // In 64 bits, so that a rectangle reaching past INT_MAX clips rather than overflows.
+  const long long x_end = std::min<long long>(width_, static_cast<long long>(x) + width);
+  const long long y_end = std::min<long long>(height_, static_cast<long long>(y) + height);
+  for (long long py = std::max(0, y); py < y_end; ++py) {
+    for (long long px = std::max(0, x); px < x_end; ++px) {
+      at(static_cast<int>(px), static_cast<int>(py)) = color;
+    }
+  }
+}
+
+void Image::Paste(const Image& source, int x, int y) {
+  const auto inside = [](long long v, int size) { return v >= 0 && v < size; };
+  for (int sy = 0; sy < source.height(); ++sy) {
+    const long long ty = static_cast<long long>(y) + sy;
+    if (!inside(ty, height_)) continue;
+    for (int sx = 0; sx < source.width(); ++sx) {
+      const long long tx = static_cast<long long>(x) + sx;
+      if (inside(tx, width_)) at(static_cast<int>(tx), static_cast<int>(ty)) = source.at(sx, sy);
     }
   }
 }

@@ -20,6 +20,9 @@ struct Rgb {
 
 inline constexpr Rgb kWhite{255, 255, 255};
 
+// The colour `t` of the way from `from` to `to` (t in [0, 1], clamped), each channel rounded.
+Rgb Blend(Rgb from, Rgb to, double t);
+
 // An 8-bit RGB raster, row 0 at the top. Drawing clips to the image. Drawing coordinates are in
 // pixels, pixel (x, y) being the unit square centred on (x, y).
 class Image {
@@ -38,6 +41,10 @@ class Image {
   void DrawLine(double x0, double y0, double x1, double y1, Rgb color, int thickness = 1);
   // Fills the pixels whose centres lie within radius of (cx, cy).
   void DrawDisc(double cx, double cy, double radius, Rgb color);
+  // Fills the width x height pixels whose top-left one is (x, y).
+  void FillRect(int x, int y, int width, int height, Rgb color);
+  // Copies `source` with its top-left pixel at (x, y).
+  void Paste(const Image& source, int x, int y);
 
  private:
   int width_ = 0;
@@ -48,7 +55,8 @@ class Image {
 // How many of the image's pixels have exactly this colour.
 int CountPixels(const Image& image, Rgb color);
 
-// Writes an 8-bit RGB PNG; throws evoslam::Error naming the path on failure.
+// Writes an 8-bit PNG, with a palette when the image has at most 256 colours (far smaller for
+// drawings), else RGB; throws evoslam::Error naming the path on failure.
 void WritePng(const Image& image, const std::filesystem::path& path);
 // Reads an 8-bit (gray, gray+alpha, RGB or RGBA) PNG; throws evoslam::InputError.
 Image ReadPng(const std::filesystem::path& path);

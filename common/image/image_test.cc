@@ -187,5 +187,37 @@ TEST(ImageTest, DiscClipsAndRejectsBadInput) {
   EXPECT_TRUE(PixelsOf(image, {0, 0, 1}).empty());
 }
 
+TEST(ImageTest, BlendGoesFromOneColourToTheOther) {
+  const Rgb blue{40, 90, 230};
+  EXPECT_EQ(Blend(blue, kWhite, 0.0), blue);
+  EXPECT_EQ(Blend(blue, kWhite, 1.0), kWhite);
+  EXPECT_EQ(Blend(blue, kWhite, 0.5), (Rgb{148, 173, 243}));
+  EXPECT_EQ(Blend(blue, kWhite, -3.0), blue);
+  EXPECT_EQ(Blend(blue, kWhite, 7.0), kWhite);
+}
+
+TEST(ImageTest, FillRectClipsToTheImage) {
+  Image image(6, 5);
+  image.FillRect(4, 3, 10, 10, kRed);
+  EXPECT_EQ(PixelsOf(image, kRed), (std::set<std::pair<int, int>>{{4, 3}, {5, 3}, {4, 4}, {5, 4}}));
+  image.FillRect(-5, -5, 6, 6, {0, 0, 1});
+  EXPECT_EQ(PixelsOf(image, {0, 0, 1}), (std::set<std::pair<int, int>>{{0, 0}}));
+  image.FillRect(2, 2, 0, 3, {0, 0, 2});
+  image.FillRect(1 << 30, 0, 1 << 30, 1, {0, 0, 2});
+  EXPECT_TRUE(PixelsOf(image, {0, 0, 2}).empty());
+}
+
+TEST(ImageTest, PasteCopiesWhatFallsWithinTheImage) {
+  Image stamp(3, 2, kRed);
+  stamp.at(0, 0) = {0, 0, 1};
+  Image image(5, 4);
+  image.Paste(stamp, 3, 2);
+  EXPECT_EQ(image.at(3, 2), (Rgb{0, 0, 1}));
+  EXPECT_EQ(PixelsOf(image, kRed), (std::set<std::pair<int, int>>{{4, 2}, {3, 3}, {4, 3}}));
+  image.Paste(stamp, -2, -1);
+  EXPECT_EQ(image.at(0, 0), kRed);
+  image.Paste(stamp, 1 << 30, -(1 << 30));
+}
+
 }  // namespace
 }  // namespace evoslam

@@ -4,6 +4,8 @@
 
 #include <cstdint>
 #include <limits>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +34,34 @@ class PngImage {
   png_image image_{};
 };
 
+// An image of at most 256 colours as indices into a table of them, in the order they first
+// appear, so that the same image always gives the same bytes.
+struct Palette {
+  std::vector<std::uint8_t> colors;  // r, g, b of each entry
+  std::vector<std::uint8_t> indices;
+};
+
+std::optional<Palette> PaletteOf(const Image& image) {
+  constexpr std::size_t kMaxEntries = 256;
+  Palette palette;
+  palette.indices.reserve(static_cast<std::size_t>(image.width()) * image.height());
+  std::map<std::uint32_t, std::uint8_t> index_of;
+  for (int y = 0; y < image.height(); ++y) {
+    for (int x = 0; x < image.width(); ++x) {
+      const Rgb& p = image.at(x, y);
+      const std::uint32_t key = (std::uint32_t{p.r} << 16) | (std::uint32_t{p.g} << 8) | p.b;
+      auto it = index_of.find(key);
+      if (it == index_of.end()) {
+        if (index_of.size() == kMaxEntries) return std::nullopt;
+        it = index_of.emplace(key, static_cast<std::uint8_t>(index_of.size())).first;
+        palette.colors.insert(palette.colors.end(), {p.r, p.g, p.b});
+      }
+      palette.indices.push_back(it->second);
+    }
+  }
+  return palette;
+}
+
 }  // namespace
 
 void WritePng(const Image& image, const std::filesystem::path& path) {
@@ -39,19 +69,27 @@ void WritePng(const Image& image, const std::filesystem::path& path) {
     throw Error(path.string() + ": cannot write an empty (" + std::to_string(image.width()) +
                 " x " + std::to_string(image.height()) + ") image as PNG");
   }
-  std::vector<std::uint8_t> buffer;
-  buffer.reserve(static_cast<std::size_t>(image.width()) * image.height() * 3);
-  for (int y = 0; y < image.height(); ++y) {
-    for (int x = 0; x < image.width(); ++x) {
-      const Rgb& p = image.at(x, y);
-      buffer.insert(buffer.end(), {p.r, p.g, p.b});
-    }
-  }
   PngImage png;
   png.get()->width = static_cast<png_uint_32>(image.width());
   png.get()->height = static_cast<png_uint_32>(image.height());
-  png.get()->format = PNG_FORMAT_RGB;
-  if (png_image_write_to_file(png.get(), path.c_str(), 0, buffer.data(), 0, nullptr) == 0) {
+  const std::optional<Palette> palette = PaletteOf(image);
+  std::vector<std::uint8_t> buffer;
+  if (palette) {
+    png.get()->format = PNG_FORMAT_RGB_COLORMAP;
+    png.get()->colormap_entries = static_cast<png_uint_32>(palette->colors.size() / 3);
+    buffer = palette->indices;
+  } else {
+    png.get()->format = PNG_FORMAT_RGB;
+    buffer.reserve(static_cast<std::size_t>(image.width()) * image.height() * 3);
+    for (int y = 0; y < image.height(); ++y) {
+      for (int x = 0; x < image.width(); ++x) {
+        const Rgb& p = image.at(x, y);
+        buffer.insert(buffer.end(), {p.r, p.g, p.b});
+      }
+    }
+  }
+  const void* colormap = palette ? palette->colors.data() : nullptr;
+  if (png_image_write_to_file(png.get(), path.c_str(), 0, buffer.data(), 0, colormap) == 0) {
     throw Error(path.string() + ": cannot write PNG: " + png.message());
   }
 }

@@ -2,10 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "common/image/image.h"
@@ -50,6 +53,45 @@ TEST_F(PngTest, RoundTripsEveryPixel) {
   for (int y = 0; y < 5; ++y) {
     for (int x = 0; x < 7; ++x) EXPECT_EQ(back.at(x, y), image.at(x, y)) << x << "," << y;
   }
+}
+
+// The colour type in the PNG's header: 2 for RGB, 3 for a palette.
+int ColorType(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  in.seekg(25);  // signature 8, chunk length 4, "IHDR" 4, width 4, height 4, bit depth 1
+  return in.get();
+}
+
+TEST_F(PngTest, FewColoursAreWrittenWithAPaletteAndManyAsRgb) {
+  Image few(300, 200, {205, 205, 205});
+  few.DrawLine(0, 0, 299, 199, {220, 30, 30}, 3);
+  few.FillRect(10, 150, 40, 20, {0, 0, 0});
+  Image many(300, 200);
+  for (int y = 0; y < 200; ++y) {
+    for (int x = 0; x < 300; ++x) {
+      many.at(x, y) = {static_cast<std::uint8_t>(x % 256), static_cast<std::uint8_t>(y),
+                       static_cast<std::uint8_t>(x / 256)};
+    }
+  }
+  for (const auto& [name, image, type] :
+       {std::tuple{"few.png", few, 3}, std::tuple{"many.png", many, 2}}) {
+    const fs::path path = dir_ / name;
+    WritePng(image, path);
+    EXPECT_EQ(ColorType(path), type) << name;
+    const Image back = ReadPng(path);
+    ASSERT_EQ(back.width(), image.width());
+    ASSERT_EQ(back.height(), image.height());
+    int differ = 0;
+    for (int y = 0; y < image.height(); ++y) {
+      for (int x = 0; x < image.width(); ++x) differ += !(back.at(x, y) == image.at(x, y));
+    }
+    EXPECT_EQ(differ, 0) << name;
+  }
+  // The same picture, the same bytes.
+  WritePng(few, dir_ / "again.png");
+  std::ifstream a(dir_ / "few.png", std::ios::binary), b(dir_ / "again.png", std::ios::binary);
+  EXPECT_TRUE(
+      std::equal(std::istreambuf_iterator<char>(a), {}, std::istreambuf_iterator<char>(b), {}));
 }
 
 TEST_F(PngTest, ReadsGrayAsEqualChannels) {
