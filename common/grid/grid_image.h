@@ -19,8 +19,11 @@ Image RenderGrid(const OccupancyGrid& grid);
 // RenderGrid written as PNG; throws evoslam::Error naming the path on failure.
 void WriteGridPng(const OccupancyGrid& grid, const std::filesystem::path& path);
 
-// Paints every canvas pixel whose centre lies on the grid with the colour of that cell, so that
-// trajectories can be drawn over a grid at the canvas's own scale.
+// Paints the canvas pixels over the grid with the colours of its cells, so that trajectories can
+// be drawn over a grid at the canvas's own scale. A pixel no larger than a cell takes the colour
+// of the cell its centre lies in; a larger one, that of the most telling cell it covers
+// (occupied, else free, else unknown), so that walls a cell thick stay whole in a picture of a
+// large map.
 void DrawGrid(const OccupancyGrid& grid, WorldCanvas& canvas);
 
 }  // namespace evoslam

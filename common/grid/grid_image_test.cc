@@ -70,5 +70,25 @@ TEST(GridImageTest, DrawGridPaintsCellsAtCanvasScale) {
   }
 }
 
+// Zoomed out to four cells a pixel, a wall one cell thick stays whole, and free space shows free.
+TEST(GridImageTest, APixelOverSeveralCellsShowsTheMostTellingOfThem) {
+  OccupancyGrid grid(0.05, {0.0, 0.0}, 200, 200);
+  for (int y = 0; y < 200; ++y) {
+    for (int x = 0; x < 150; ++x)
+      grid.SetCell(x, y, x == 101 ? CellState::kOccupied : CellState::kFree);
+  }
+  WorldCanvas canvas(grid.min_corner(), grid.max_corner(), 0.2, 0.0, {1, 2, 3});
+  DrawGrid(grid, canvas);
+  const Image& image = canvas.image();
+  ASSERT_EQ(image.width(), 50);
+  ASSERT_EQ(image.height(), 50);
+  for (int py = 0; py < 50; ++py) {
+    EXPECT_EQ(image.at(25, py), kOccupiedCellColor) << py;
+    EXPECT_EQ(image.at(10, py), kFreeCellColor) << py;
+    EXPECT_EQ(image.at(45, py), kUnknownCellColor) << py;
+  }
+  EXPECT_EQ(CountPixels(image, kOccupiedCellColor), 50);
+}
+
 }  // namespace
 }  // namespace evoslam
