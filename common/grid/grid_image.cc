@@ -20,20 +20,6 @@ Rgb ColorOf(CellState state) {
 
 }  // namespace
 
-Image RenderGrid(const OccupancyGrid& grid) {
-  Image image(grid.width(), grid.height());
-  for (int y = 0; y < grid.height(); ++y) {
-    for (int x = 0; x < grid.width(); ++x) {
-      image.at(x, grid.height() - 1 - y) = ColorOf(grid.state(x, y));
-    }
-  }
-  return image;
-}
-
-void WriteGridPng(const OccupancyGrid& grid, const std::filesystem::path& path) {
-  WritePng(RenderGrid(grid), path);
-}
-
 void DrawGrid(const OccupancyGrid& grid, WorldCanvas& canvas) {
   Image& image = canvas.image();
   const double half = canvas.metres_per_pixel() / 2;

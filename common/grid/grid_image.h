@@ -1,8 +1,6 @@
 #ifndef EVOSLAM_COMMON_GRID_GRID_IMAGE_H_
 #define EVOSLAM_COMMON_GRID_GRID_IMAGE_H_
 
-#include <filesystem>
-
 #include "common/grid/occupancy_grid.h"
 #include "common/image/image.h"
 #include "common/image/world_canvas.h"
@@ -12,12 +10,6 @@ namespace evoslam {
 inline constexpr Rgb kOccupiedCellColor{0, 0, 0};
 inline constexpr Rgb kFreeCellColor{255, 255, 255};
 inline constexpr Rgb kUnknownCellColor{205, 205, 205};
-
-// The grid with one pixel per cell, coloured by state; world y up is image row 0 at the top.
-Image RenderGrid(const OccupancyGrid& grid);
-
-// RenderGrid written as PNG; throws evoslam::Error naming the path on failure.
-void WriteGridPng(const OccupancyGrid& grid, const std::filesystem::path& path);
 
 // Paints the canvas pixels over the grid with the colours of its cells, so that trajectories can
 // be drawn over a grid at the canvas's own scale. A pixel no larger than a cell takes the colour

@@ -4,8 +4,9 @@
 #include "common/grid/map_io.h"
 #include "common/io/file_bytes.h"
 #include "common/io/trajectory_io.h"
-#include "common/report/map_picture.h"
+#include "common/line_map/line_map.h"
 #include "common/report/result_files.h"
+#include "common/report/run_pictures.h"
 #include "common/util/temp_dir.h"
 
 namespace evoslam {
@@ -18,13 +19,21 @@ std::vector<proto::ResultFile> LocalizeOutputs(const MapModel& map, const Datase
   // The writers all write files; they write into a private folder and are read back.
   const TempDir dir("evoslam-outputs");
   std::vector<std::string> outputs;
-  if (params.map_from_log() && map.grid()) {
-    WriteMapYaml(*map.grid(), dir / "map.yaml");
+  if (const OccupancyGrid* grid = map.grid()) {
+    WriteMapYaml(*grid, dir / "map.yaml");
     outputs.insert(outputs.end(), {"map.yaml", "map.pgm"});
+  } else if (const LineMap* walls = map.walls()) {
+    WriteLineMap(*walls, dir / "map.lines");
+    outputs.push_back("map.lines");
   }
   WriteTrajectoryText(result.trajectory, dir / "trajectory.txt");
   WriteTrajectoryTum(result.trajectory, dir / "trajectory.tum");
   outputs.insert(outputs.end(), {"trajectory.txt", "trajectory.tum"});
+  const std::vector<StampedPose> truth = ScanTruth(dataset, result.trajectory.size());
+  if (!truth.empty()) {
+    WriteTrajectoryText(truth, dir / "truth.txt");
+    outputs.push_back("truth.txt");
+  }
 
   proto::LocalizeReport report;
   report.set_format_version(1);
@@ -42,7 +51,6 @@ std::vector<proto::ResultFile> LocalizeOutputs(const MapModel& map, const Datase
     *report.add_odometry_stalls() = ToProto(stall);
   }
 
-  const std::vector<StampedPose> truth = ScanTruth(dataset, result.trajectory.size());
   if (!truth.empty()) {
     *report.mutable_absolute_errors() = ToProto(ComputeAbsoluteErrors(result.trajectory, truth));
   }
@@ -50,15 +58,13 @@ std::vector<proto::ResultFile> LocalizeOutputs(const MapModel& map, const Datase
     *report.mutable_relation_errors() = std::move(*errors);
   }
 
-  std::vector<TrajectoryLayer> layers;
-  if (!truth.empty()) layers.push_back(MakeLayer("truth", truth, kTruthColor));
-  layers.push_back(MakeLayer("estimate", result.trajectory, kEstimateColor));
-  WriteMapPicture(map, layers, dir / "map.png");
   outputs.insert(outputs.end(), {"map.png", "report.json", "summary.txt"});
   for (const auto& o : outputs) report.add_outputs(o);
 
   WriteJson(report, dir / "report.json");
   WriteFileBytes(dir / "summary.txt", FormatSummary(report));
+  // Drawn from the files, as `evoslam plot` draws them.
+  WriteRunPictures(ReadRun(dir.path()), dir.path());
   return ReadResultFiles(dir.path(), outputs);
 }
 

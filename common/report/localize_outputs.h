@@ -15,9 +15,10 @@
 
 namespace evoslam {
 
-// Everything a localization job hands back, as named files: trajectory.txt and trajectory.tum,
-// report.json, summary.txt, map.png (the map with the estimate, and ground truth when the log
-// has it), and map.yaml + map.pgm when the map was built from a log. The coordinator makes them
+// Everything a localization job hands back, as named files: the map it localized in (map.yaml +
+// map.pgm for a grid, map.lines for walls), trajectory.txt and trajectory.tum, truth.txt when
+// the log has ground truth, map.png (the map with the estimate and the truth, drawn from those
+// files as `evoslam plot` draws it), report.json and summary.txt. The coordinator makes them
 // once, so a job gives the same files wherever it ran.
 std::vector<proto::ResultFile> LocalizeOutputs(const MapModel& map, const Dataset& dataset,
                                                const proto::LocalizeParams& params,

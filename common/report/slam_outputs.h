@@ -5,7 +5,6 @@
 #include <optional>
 #include <vector>
 
-#include "common/image/image.h"
 #include "common/report/localize_report.h"
 #include "common/sensor/dataset.h"
 #include "common/slam/slam_method.h"
@@ -14,17 +13,15 @@
 
 namespace evoslam {
 
-// map_trajectory.png's colours besides the truth's and the estimate's (map_picture.h).
-inline constexpr Rgb kOdometryColor{40, 90, 230};
-inline constexpr Rgb kLoopColor{240, 140, 0};
-
 // Everything a SLAM job hands back, as named files, in this order:
 //   trajectory.txt, trajectory.tum  the result's poses;
+//   odometry.txt                    the odometry at each scan mapped;
+//   truth.txt                       the ground truth at each scan, when the scans have it;
 //   map.yaml, map.pgm, map.png      the result's map, for map_server and as a picture;
-//   map_trajectory.png              the grid with the estimate, odometry, ground truth when the
-//                                   scans have it, and each loop closure as a line between its
-//                                   two poses;
+//   map_trajectory.png              the map with the estimate, odometry, ground truth and each
+//                                   loop closure as a line between its two poses;
 //   report.json, summary.txt        MakeSlamReport with the outputs listed, and its summary.
+// The pictures are drawn from the other files (run_pictures.h), as `evoslam plot` draws them.
 // The result covers the log's first result.trajectory.size() scans. The same result gives the
 // same bytes. Throws Error for a result with no poses, more poses than scans, or a loop whose
 // scans lie beyond its poses.
