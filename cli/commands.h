@@ -16,6 +16,7 @@ void AddKeygenCommand(CLI::App& app);
 // jobs, status, watch, result, cancel, workers: managing jobs on a running coordinator.
 void AddJobCommands(CLI::App& app);
 void AddTuneCommand(CLI::App& app);
+void AddPlotCommand(CLI::App& app);
 
 }  // namespace evoslam::cli
 

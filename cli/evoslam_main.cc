@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   evoslam::cli::AddSlamCommand(app);
   evoslam::cli::AddLocalizeCommand(app);
   evoslam::cli::AddEvalCommand(app);
+  evoslam::cli::AddPlotCommand(app);
   evoslam::cli::AddKeygenCommand(app);
   evoslam::cli::AddJobCommands(app);
   evoslam::cli::AddTuneCommand(app);

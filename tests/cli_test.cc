@@ -15,7 +15,10 @@
 #include <utility>
 #include <vector>
 
+#include "common/image/bitmap_font.h"
+#include "common/image/image.h"
 #include "common/io/trajectory_io.h"
+#include "common/report/map_picture.h"
 #include "common/util/temp_dir.h"
 #include "evoslam/slam.pb.h"
 
@@ -412,7 +415,10 @@ evoslam::proto::SlamReport ReadSlamReport(const fs::path& path) {
 // The demo's run, `slam` with no input, gives the trajectory it gave when the file was written,
 // to the last bit: a change that alters a result must say so by changing the file
 // (`evoslam slam --out DIR`, then copy DIR/trajectory.txt to tests/data/demo-trajectory.txt).
-TEST_F(CliTest, TheDemosTrajectoryIsPinnedToTheBit) {
+// Its picture explains itself: a title, a legend naming each line, the map filling the picture
+// though odometry alone drifts metres off it, and the truth showing beside the estimate that
+// follows it to a centimetre.
+TEST_F(CliTest, TheDemosTrajectoryIsPinnedToTheBitAndItsPictureExplainsItself) {
 #ifdef EVOSLAM_SANITIZED
   GTEST_SKIP() << "the whole demo takes minutes under the sanitizers; the Release pass pins it";
 #endif
@@ -420,6 +426,32 @@ TEST_F(CliTest, TheDemosTrajectoryIsPinnedToTheBit) {
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_TRUE(ReadAll(dir_ / "demo" / "trajectory.txt") == ReadAll(EVOSLAM_DEMO_TRAJECTORY))
       << "the demo's trajectory differs from " << EVOSLAM_DEMO_TRAJECTORY;
+
+  const evoslam::Image image = evoslam::ReadPng(dir_ / "demo" / "map_trajectory.png");
+  EXPECT_GE(std::max(image.width(), image.height()), 1000);
+  // The title, word by word: the scratch folder's path may be long enough to wrap it.
+  for (const char* word : {"SLAM", "(rss),", "1823", "aligned"}) {
+    EXPECT_TRUE(evoslam::FindText(image, word, evoslam::kInkColor, 2)) << word;
+  }
+  for (const char* label : {"estimate", "ground truth", "odometry alone", "loop closures (0)"}) {
+    EXPECT_TRUE(evoslam::FindText(image, label, evoslam::kInkColor, 2)) << label;
+  }
+  // The walls above the legend span most of the picture.
+  const int legend = evoslam::FindText(image, "estimate", evoslam::kInkColor, 2)->y();
+  int left = image.width(), right = -1, top = image.height(), bottom = -1;
+  for (int y = 0; y < legend; ++y) {
+    for (int x = 0; x < image.width(); ++x) {
+      if (!(image.at(x, y) == evoslam::Rgb{0, 0, 0})) continue;
+      left = std::min(left, x);
+      right = std::max(right, x);
+      top = std::min(top, y);
+      bottom = std::max(bottom, y);
+    }
+  }
+  EXPECT_GT(right - left, 0.85 * image.width());
+  EXPECT_GT(bottom - top, 0.7 * image.height());
+  EXPECT_GT(evoslam::CountPixels(image, evoslam::kTruthColor),
+            evoslam::CountPixels(image, evoslam::kEstimateColor));
 }
 
 TEST_F(CliTest, SlamMapsASimulatedWorld) {
@@ -573,6 +605,69 @@ TEST_F(CliTest, SlamOnAMalformedLogFailsNamingFileAndLine) {
   const Result r = RunCli("slam --log " + Path("broken.clf") + " --out " + Path("o"));
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.output.find(Path("broken.clf") + ":3:"), std::string::npos) << r.output;
+}
+
+// `plot` draws a run's pictures again from its folder, the same bytes the run wrote; elsewhere
+// with --out; and beside another run's estimate with --compare.
+TEST_F(CliTest, PlotRedrawsARunsPicturesFromItsFolder) {
+  const std::string slam = "slam --world office-boxes --max-scans 60 --local-only";
+  ASSERT_EQ(RunCli(slam + " --out " + Path("a")).status, 0);
+  const std::string map = ReadAll(dir_ / "a" / "map.png");
+  const std::string picture = ReadAll(dir_ / "a" / "map_trajectory.png");
+  fs::remove(dir_ / "a" / "map.png");
+  fs::remove(dir_ / "a" / "map_trajectory.png");
+  const Result plot = RunCli("plot " + Path("a"));
+  ASSERT_EQ(plot.status, 0) << plot.output;
+  EXPECT_NE(plot.output.find("wrote " + Path("a/map_trajectory.png")), std::string::npos)
+      << plot.output;
+  EXPECT_TRUE(ReadAll(dir_ / "a" / "map.png") == map);
+  EXPECT_TRUE(ReadAll(dir_ / "a" / "map_trajectory.png") == picture);
+
+  const Result out = RunCli("plot " + Path("a") + " --out " + Path("pictures/a.png"));
+  ASSERT_EQ(out.status, 0) << out.output;
+  EXPECT_TRUE(ReadAll(dir_ / "pictures" / "a.png") == picture);
+
+  ASSERT_EQ(RunCli(slam + " --seed 2 --out " + Path("b")).status, 0);
+  const Result compare = RunCli("plot " + Path("a") + " --compare " + Path("b"));
+  ASSERT_EQ(compare.status, 0) << compare.output;
+  const evoslam::Image both = evoslam::ReadPng(dir_ / "a" / "compare.png");
+  EXPECT_GT(evoslam::CountPixels(both, evoslam::kComparedColor), 500);
+  EXPECT_TRUE(evoslam::FindText(both, Path("b"), evoslam::kInkColor, 2));
+  EXPECT_TRUE(ReadAll(dir_ / "a" / "map_trajectory.png") == picture) << "left as it was";
+
+  // A localization's folder too.
+  ASSERT_EQ(RunCli("simulate --world s-corridor --max-scans 10 --out " + Path("sim")).status, 0);
+  ASSERT_EQ(RunCli("localize --map " + Path("sim/world.lines") + " --log " + Path("sim/log.clf") +
+                   " --out " + Path("loc"))
+                .status,
+            0);
+  const std::string located = ReadAll(dir_ / "loc" / "map.png");
+  fs::remove(dir_ / "loc" / "map.png");
+  ASSERT_EQ(RunCli("plot " + Path("loc")).status, 0);
+  EXPECT_TRUE(ReadAll(dir_ / "loc" / "map.png") == located);
+}
+
+// A folder that is not there, or lacks a file the pictures need, is named with what it lacks
+// (exit 1); a wrong flag is refused before any folder is read (exit 2).
+TEST_F(CliTest, PlotSaysWhatItLacksAndWhere) {
+  const Result missing = RunCli("plot " + Path("nowhere"));
+  EXPECT_EQ(missing.status, 1) << missing.output;
+  EXPECT_NE(missing.output.find(Path("nowhere") + " is not a folder"), std::string::npos)
+      << missing.output;
+
+  ASSERT_EQ(RunCli("slam --max-scans 20 --local-only --out " + Path("run")).status, 0);
+  fs::remove(dir_ / "run" / "odometry.txt");
+  const Result lacking = RunCli("plot " + Path("run"));
+  EXPECT_EQ(lacking.status, 1) << lacking.output;
+  EXPECT_NE(lacking.output.find(Path("run") + " has no odometry.txt"), std::string::npos)
+      << lacking.output;
+
+  for (const std::string& args : std::vector<std::string>{"", "--no-such-flag " + Path("run"),
+                                                          Path("nowhere") + " --compare"}) {
+    const Result r = RunCli("plot " + args);
+    EXPECT_EQ(r.status, 2) << args << ": " << r.output;
+    EXPECT_EQ(r.output.find("is not a folder"), std::string::npos) << r.output;
+  }
 }
 
 TEST_F(CliTest, InfoDescribesTheIntelLog) {
