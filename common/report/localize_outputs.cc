@@ -41,6 +41,9 @@ std::vector<proto::ResultFile> LocalizeOutputs(const MapModel& map, const Datase
   for (const OdometryStall& stall : result.odometry_stalls) {
     *report.add_odometry_stalls() = ToProto(stall);
   }
+  if (auto warnings = LogWarningsOf(dataset, result.trajectory.size())) {
+    *report.mutable_log_warnings() = *warnings;
+  }
 
   const std::vector<StampedPose> truth = ScanTruth(dataset, result.trajectory.size());
   if (!truth.empty()) {
