@@ -1,14 +1,23 @@
 #include "cli/embedded_service.h"
 
 #include <omp.h>
+#include <sys/resource.h>
 
 #include <algorithm>
+#include <limits>
 
 namespace evoslam::cli {
 namespace {
 
 constexpr const char* kClients = "inproc://evoslam-clients";
 constexpr const char* kWorkers = "inproc://evoslam-workers";
+
+// A worker's socket and its compute thread's eventfd, and room for a file it writes.
+constexpr std::size_t kFilesPerWorker = 3;
+// The coordinator's sockets, database and eventfd, the client's socket, the log being read,
+// ZeroMQ's own: the files that do not grow with the workers.
+constexpr std::size_t kFilesBesidesWorkers = 64;
+constexpr std::size_t kSocketsBesidesWorkers = 8;
 
 }  // namespace
 
@@ -58,6 +67,18 @@ EmbeddedLayout ChooseEmbeddedLayout(std::size_t islands, std::size_t workers, in
   layout.threads =
       threads > 0 ? threads : static_cast<int>(std::max<std::size_t>(1, cores / layout.workers));
   return layout;
+}
+
+std::size_t MaxEmbeddedWorkers() {
+  rlimit files{};
+  std::size_t by_files = 0;
+  if (::getrlimit(RLIMIT_NOFILE, &files) != 0 || files.rlim_cur == RLIM_INFINITY) {
+    by_files = std::numeric_limits<std::size_t>::max();
+  } else if (files.rlim_cur > kFilesBesidesWorkers) {
+    by_files = (static_cast<std::size_t>(files.rlim_cur) - kFilesBesidesWorkers) / kFilesPerWorker;
+  }
+  const std::size_t by_sockets = ZMQ_MAX_SOCKETS_DFLT - kSocketsBesidesWorkers;
+  return std::min(by_files, by_sockets);
 }
 
 }  // namespace evoslam::cli

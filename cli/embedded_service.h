@@ -45,6 +45,10 @@ struct EmbeddedLayout {
 };
 EmbeddedLayout ChooseEmbeddedLayout(std::size_t islands, std::size_t workers, int threads);
 
+// The most workers this process can embed: each holds a socket and an eventfd, within the files
+// the process may open (ulimit -n) and the sockets a ZeroMQ context may hold.
+std::size_t MaxEmbeddedWorkers();
+
 }  // namespace evoslam::cli
 
 #endif  // EVOSLAM_CLI_EMBEDDED_SERVICE_H_

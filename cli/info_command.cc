@@ -22,8 +22,8 @@ void AddInfoCommand(CLI::App& app) {
     std::printf("%s\n", args->log.c_str());
     std::printf("%s", FormatSummary(Summarize(dataset)).c_str());
     if (stats.skipped > 0) {
-      std::printf("skipped %zu malformed lines (first: %s)\n", stats.skipped,
-                  stats.first_skip_reason.c_str());
+      std::printf("skipped %zu malformed lines (the first, line %zu: %s)\n", stats.skipped,
+                  stats.first_skip_line, stats.first_skip_reason.c_str());
     }
   });
 }

@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <vector>
 
+#include "cli/embedded_service.h"
 #include "cli/job_client.h"
+#include "cli/option_parsing.h"
 
 namespace evoslam::cli {
 
@@ -27,6 +29,13 @@ void AddJobOutputOptions(CLI::App* cmd, JobRunArgs& a) {
 
 void CheckJobRunArgs(const JobRunArgs& a) {
   if (a.out.empty() && !a.detach) throw CLI::RequiredError("--out");
+  if (!a.out.empty()) CheckOutputFolder("--out", a.out);
+  if (a.workers > MaxEmbeddedWorkers()) {
+    throw CLI::ValidationError(
+        "--workers", std::to_string(a.workers) + " is more than this process can embed: at most " +
+                         std::to_string(MaxEmbeddedWorkers()) +
+                         " within its limits on open files (ulimit -n) and on ZeroMQ sockets");
+  }
   if (!a.service.coordinator.empty() && a.workers > 0) {
     throw CLI::ValidationError(
         "--workers sets the embedded workers; with --coordinator, start "

@@ -1,10 +1,13 @@
 #include "cli/localize_args.h"
 
+#include <fmt/format.h>
+
 #include "cli/job_client.h"
 #include "cli/option_parsing.h"
 #include "common/engine/archipelago.h"
 #include "common/engine/presets.h"
 #include "common/localization/localize_params.h"
+#include "common/localization/pose_estimator.h"
 #include "common/transform/angle_units.h"
 #include "common/util/error.h"
 
@@ -161,6 +164,23 @@ LocalizeOptions OptionsFrom(const LocalizeArgs& a) try {
   e.heading_half_window = Radians(a.heading_window);
   e.heading_step = Radians(a.heading_step);
   e.exhaustive_step = a.exhaustive_step;
+  // The searches sized by a step are refused naming the flag; ValidateEstimatorParams checks the
+  // same for jobs that come over the socket.
+  if (!(e.heading_step >= kMinHeadingStep) || !(HeadingsPerScan(e) <= kMaxHeadingsPerScan)) {
+    throw CLI::ValidationError(
+        "--heading-step", fmt::format("{} degrees over a window of +-{} degrees tries {:.0f} "
+                                      "headings per scan; the step must be at least {} degrees and "
+                                      "the headings at most {:.0f}",
+                                      a.heading_step, a.heading_window, HeadingsPerScan(e),
+                                      Degrees(kMinHeadingStep), kMaxHeadingsPerScan));
+  }
+  if (e.optimizer == OptimizerKind::kExhaustive &&
+      !(LatticePosesPerScan(e) <= kMaxLatticePosesPerScan)) {
+    throw CLI::ValidationError(
+        "--exhaustive-step",
+        fmt::format("{} m over a {} m window tries {:.0f} poses per scan, more than {:.0f}",
+                    a.exhaustive_step, a.window, LatticePosesPerScan(e), kMaxLatticePosesPerScan));
+  }
   ValidateEstimatorParams(e);
   options.use_odometry = a.use_odometry;
   options.seed = a.seed;

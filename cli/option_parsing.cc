@@ -1,11 +1,15 @@
 #include "cli/option_parsing.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <string_view>
+#include <system_error>
 #include <type_traits>
 #include <vector>
 
@@ -68,6 +72,25 @@ CLI::Validator PositiveNumber() {
 
 CLI::Validator NonNegativeNumber() {
   return NumberValidator([](double v) { return v >= 0.0; }, "a number >= 0", "NONNEGATIVE");
+}
+
+void CheckOutputFolder(const std::string& flag, const std::string& folder) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path target = fs::absolute(folder, ec);
+  if (ec) throw CLI::ValidationError(flag, "cannot resolve '" + folder + "': " + ec.message());
+  // The folder itself when it exists, else the nearest existing folder above it, which the run
+  // would create it in.
+  fs::path path = target;
+  while (!fs::exists(path, ec) && path.has_relative_path()) path = path.parent_path();
+  if (!fs::is_directory(path, ec)) {
+    throw CLI::ValidationError(flag, "'" + path.string() + "' is not a folder");
+  }
+  if (::access(path.c_str(), W_OK | X_OK) != 0) {
+    throw CLI::ValidationError(
+        flag, "cannot write into '" + path.string() + "'" +
+                  (path == target ? std::string() : " to create '" + folder + "' there"));
+  }
 }
 
 }  // namespace evoslam::cli

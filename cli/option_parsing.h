@@ -17,6 +17,11 @@ Pose2 ParsePose(const std::string& text, const std::string& flag);
 CLI::Validator PositiveNumber();
 CLI::Validator NonNegativeNumber();
 
+// Refuses, as a command-line error naming `flag`, an output folder that a run could not write
+// into: one that is a file, or whose nearest existing folder is not writable. Creates nothing, so
+// that a refused command leaves no trace.
+void CheckOutputFolder(const std::string& flag, const std::string& folder);
+
 }  // namespace evoslam::cli
 
 #endif  // EVOSLAM_CLI_OPTION_PARSING_H_

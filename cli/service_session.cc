@@ -2,11 +2,14 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/util/counted.h"
+
 namespace evoslam::cli {
 
 ServiceSession::ServiceSession(const ServiceArgs& args, const EmbeddedLayout& layout) {
   if (args.coordinator.empty()) {
-    spdlog::debug("embedded: {} workers of {} threads", layout.workers, layout.threads);
+    spdlog::debug("embedded: {} of {}", Counted(layout.workers, "worker"),
+                  Counted(layout.threads, "thread"));
     embedded_ = std::make_unique<EmbeddedService>(layout.workers, layout.threads);
     client_ = std::make_unique<ServiceClient>(embedded_->context(), embedded_->client_options());
   } else {

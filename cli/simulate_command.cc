@@ -1,3 +1,4 @@
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
@@ -21,9 +22,15 @@ struct SimulateArgs {
 };
 
 void Run(SimulateArgs a) {
+  CheckOutputFolder("--out", a.out);
   World world = a.world_file.empty() ? BuiltinWorld(a.world)
                                      : WorldFromLineMap(ReadLineMap(a.world_file), a.world_file);
   if (!a.route_file.empty()) world.waypoints = ReadRoute(a.route_file);
+  if (const double poses = RoutePoseCount(world, a.options); !(poses <= kMaxSimulatedScans)) {
+    throw CLI::ValidationError(
+        "--step", fmt::format("{} m makes {:.0f} poses of the {} route, more than {:.0f}",
+                              a.options.step, poses, world.name, kMaxSimulatedScans));
+  }
   if (a.no_odometry_noise) a.options.noise.odometry = {0.0, 0.0, 0.0, 0.0};
   const Dataset log = Simulate(world, a.options);
   WriteSimulation(log, world, a.out);

@@ -143,6 +143,7 @@ proto::SlamParams ParamsFrom(const SlamArgs& a, const std::string& log) try {
 }
 
 void Run(const SlamArgs& a) {
+  if (!a.print_params) CheckJobRunArgs(a.run);
   const std::string world = !a.log.empty() ? "" : !a.world.empty() ? a.world : kDefaultWorld;
   const std::string log = world.empty() ? a.log : (fs::path(a.run.out) / "log.clf").string();
   const proto::SlamParams params = ParamsFrom(a, log);
@@ -153,7 +154,6 @@ void Run(const SlamArgs& a) {
     std::printf("%s", SlamParamsText(printed).c_str());
     return;
   }
-  CheckJobRunArgs(a.run);
   if (!world.empty() && a.run.out.empty()) {
     throw CLI::ValidationError("--world writes the log it simulates into --out: give --out");
   }

@@ -22,6 +22,7 @@
 #include "common/protocol/zmq_io.h"
 #include "common/service/dataset_files.h"
 #include "common/service/job_state.h"
+#include "common/util/counted.h"
 #include "common/util/error.h"
 #include "common/util/sha256.h"
 #include "common/util/temp_dir.h"
@@ -497,8 +498,9 @@ void Coordinator::Impl::HandleWorker(const std::string& identity,
     // worker idle while a task is on its way to it: it would be sent a second, refuse it as
     // busy, and the refusal would fail the job.
     if (table_.Ready(identity, message.ready(), now)) {
-      spdlog::log(notice_, "worker {} ({}, {} threads) is ready", Peer(identity),
-                  message.ready().hostname().substr(0, 64), message.ready().threads());
+      spdlog::log(notice_, "worker {} ({}, {}) is ready", Peer(identity),
+                  message.ready().hostname().substr(0, 64),
+                  Counted(message.ready().threads(), "thread"));
     } else {
       spdlog::debug("worker {} said Ready again", Peer(identity));
     }

@@ -1,7 +1,6 @@
 // The evoslam command line end to end: outputs, exit codes and error messages.
 #include <google/protobuf/util/json_util.h>
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <array>
@@ -21,29 +20,15 @@
 #include "common/report/map_picture.h"
 #include "common/util/temp_dir.h"
 #include "evoslam/slam.pb.h"
+#include "tests/cli_testing.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int status = 0;
-  std::string output;  // stdout and stderr
-};
-
-Result RunCommand(const std::string& command_line) {
-  const std::string command = command_line + " 2>&1";
-  Result r;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return {-1, "popen failed"};
-  std::array<char, 4096> buffer;
-  while (std::fgets(buffer.data(), buffer.size(), pipe)) r.output += buffer.data();
-  const int raw = pclose(pipe);
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return r;
-}
-
-Result RunCli(const std::string& args) { return RunCommand(std::string(EVOSLAM_CLI) + " " + args); }
+using evoslam::testing::RunCli;
+using evoslam::testing::RunCommand;
+using Result = evoslam::testing::CommandResult;
 
 // bench/seed_sweep.sh with this build's evoslam.
 Result RunSweep(const std::string& args) {

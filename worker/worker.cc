@@ -17,6 +17,7 @@
 #include "common/protocol/wire.h"
 #include "common/protocol/zmq_io.h"
 #include "common/service/dataset_files.h"
+#include "common/util/counted.h"
 #include "common/util/error.h"
 #include "common/util/temp_dir.h"
 #include "worker/task_executor.h"
@@ -278,8 +279,8 @@ void Worker::Impl::OnMessage(const proto::CoordinatorMessage& message) {
 
 bool Worker::Impl::Run(const std::stop_token& stop) {
   Connect();
-  spdlog::log(notice_, "worker: connecting to {} ({} threads, cache {})", options_.endpoint,
-              options_.threads > 0 ? options_.threads : omp_get_max_threads(),
+  spdlog::log(notice_, "worker: connecting to {} ({}, cache {})", options_.endpoint,
+              Counted(options_.threads > 0 ? options_.threads : omp_get_max_threads(), "thread"),
               options_.cache_dir.string());
   const WireLimits limits;
   int liveness = options_.liveness;

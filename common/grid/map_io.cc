@@ -227,9 +227,12 @@ GrayImage ReadMapImage(const MapSpec& spec, const std::string& yaml_source) {
   in.read(magic.data(), magic.size());
   const std::string_view head(magic.data(), static_cast<std::size_t>(in.gcount()));
   in.close();
-  if (head.starts_with("P5") || head.starts_with("P2")) return ReadPgm(spec.image);
+  // The grid's cell limit is checked on the image's header, before decoding a picture too large
+  // to become a map.
+  constexpr auto kMaxPixels = static_cast<std::uint64_t>(OccupancyGrid::kMaxCells);
+  if (head.starts_with("P5") || head.starts_with("P2")) return ReadPgm(spec.image, kMaxPixels);
   if (head.starts_with("\x89PNG")) {
-    const Image rgb = ReadPng(spec.image);
+    const Image rgb = ReadPng(spec.image, kMaxPixels);
     GrayImage gray;
     gray.width = rgb.width();
     gray.height = rgb.height();
@@ -251,12 +254,6 @@ OccupancyGrid ReadMapYaml(const fs::path& yaml_path) {
   const YamlMap yaml(yaml_path);
   const MapSpec spec = ParseSpec(yaml, yaml_path);
   const GrayImage image = ReadMapImage(spec, yaml.source());
-  if (static_cast<long long>(image.width) * image.height > OccupancyGrid::kMaxCells) {
-    throw InputError(spec.image.string(), 0,
-                     "map of " + std::to_string(image.width) + " x " +
-                         std::to_string(image.height) + " pixels exceeds " +
-                         std::to_string(OccupancyGrid::kMaxCells) + " cells");
-  }
   OccupancyGrid grid(spec.resolution, spec.origin, image.width, image.height);
   const double maxval = image.maxval;
   for (int row = 0; row < image.height; ++row) {

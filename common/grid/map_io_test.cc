@@ -55,6 +55,14 @@ class MapIoTest : public ::testing::Test {
   TempDir dir_;
 };
 
+TEST_F(MapIoTest, AnImageTooLargeForAGridIsRefusedOnItsHeaderNamingTheImage) {
+  // The header alone: were the pixels read first, the fault would be the missing pixel data.
+  WriteText("huge.pgm", "P5\n9000 9000\n255\n");
+  const InputError e = ReadError(WriteText("huge.yaml", Yaml("huge.pgm")));
+  EXPECT_EQ(fs::path(e.source()).filename(), "huge.pgm");
+  EXPECT_THAT(e.message(), HasSubstr("9000 x 9000 pixels, more than the"));
+}
+
 TEST_F(MapIoTest, ReadsTrinaryPgmMap) {
   WriteSmallPgm("small.pgm");
   const OccupancyGrid grid = ReadMapYaml(WriteText("small.yaml", Yaml("small.pgm")));

@@ -58,8 +58,9 @@ int CountPixels(const Image& image, Rgb color);
 // Writes an 8-bit PNG, with a palette when the image has at most 256 colours (far smaller for
 // drawings), else RGB; throws evoslam::Error naming the path on failure.
 void WritePng(const Image& image, const std::filesystem::path& path);
-// Reads an 8-bit (gray, gray+alpha, RGB or RGBA) PNG; throws evoslam::InputError.
-Image ReadPng(const std::filesystem::path& path);
+// Reads an 8-bit (gray, gray+alpha, RGB or RGBA) PNG; throws evoslam::InputError, also for a
+// header that states more than `max_pixels` pixels, before any pixel is decoded.
+Image ReadPng(const std::filesystem::path& path, std::uint64_t max_pixels = kMaxDecodedPixels);
 
 }  // namespace evoslam
 

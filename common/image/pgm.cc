@@ -1,5 +1,6 @@
 #include "common/image/pgm.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdint>
 #include <fstream>
@@ -81,7 +82,7 @@ class Scanner {
 
 }  // namespace
 
-GrayImage ReadPgm(const std::filesystem::path& path) {
+GrayImage ReadPgm(const std::filesystem::path& path, std::uint64_t max_pixels) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string(), 0, "cannot open PGM file");
   const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -102,9 +103,10 @@ GrayImage ReadPgm(const std::filesystem::path& path) {
   image.height = static_cast<int>(scan.Number("height", kMaxSide));
   if (image.width == 0 || image.height == 0) scan.Fail("width and height must be positive");
   const std::uint64_t pixels = static_cast<std::uint64_t>(image.width) * image.height;
-  if (pixels > kMaxDecodedPixels) {
+  if (pixels > std::min(max_pixels, kMaxDecodedPixels)) {
     scan.Fail("image of " + std::to_string(image.width) + " x " + std::to_string(image.height) +
-              " pixels exceeds the supported " + std::to_string(kMaxDecodedPixels));
+              " pixels, more than the " + std::to_string(std::min(max_pixels, kMaxDecodedPixels)) +
+              " allowed");
   }
   scan.SkipSpaceAndComments();
   const std::size_t maxval_line = scan.line();

@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <vector>
 
+#include "common/image/image.h"
+
 namespace evoslam {
 
 // An 8-bit grayscale raster as a PGM file holds it: values 0 (black) to maxval (white), row 0 at
@@ -24,8 +26,10 @@ struct GrayImage {
 // Reads a binary (P5) or plain (P2) PGM with maxval at most 255. '#' comments may appear
 // wherever whitespace may. Throws evoslam::InputError naming the file (and the line, where it
 // has lines) for a bad header, a value above maxval, or pixel data that is short of or longer
-// than width x height.
-GrayImage ReadPgm(const std::filesystem::path& path);
+// than width x height, and for a header that states more than `max_pixels` pixels, before any
+// pixel is decoded.
+GrayImage ReadPgm(const std::filesystem::path& path,
+                  std::uint64_t max_pixels = kMaxDecodedPixels);
 
 // Writes a binary (P5) PGM; throws evoslam::Error naming the path on failure or when the pixel
 // count does not match the size.

@@ -2,6 +2,7 @@
 // png_image rather than through longjmp, so no C++ object ever lives across a setjmp.
 #include <png.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <map>
@@ -94,19 +95,19 @@ void WritePng(const Image& image, const std::filesystem::path& path) {
   }
 }
 
-Image ReadPng(const std::filesystem::path& path) {
+Image ReadPng(const std::filesystem::path& path, std::uint64_t max_pixels) {
   PngImage png;
   if (png_image_begin_read_from_file(png.get(), path.c_str()) == 0) {
     throw InputError(path.string(), 0, "cannot read PNG: " + png.message());
   }
   const std::uint64_t width = png.get()->width;
   const std::uint64_t height = png.get()->height;
-  if (width * height > kMaxDecodedPixels || width > std::numeric_limits<int>::max() ||
+  const std::uint64_t allowed = std::min(max_pixels, kMaxDecodedPixels);
+  if (width * height > allowed || width > std::numeric_limits<int>::max() ||
       height > std::numeric_limits<int>::max()) {
     throw InputError(path.string(), 0,
                      "PNG of " + std::to_string(width) + " x " + std::to_string(height) +
-                         " pixels is larger than the supported " +
-                         std::to_string(kMaxDecodedPixels));
+                         " pixels, more than the " + std::to_string(allowed) + " allowed");
   }
   png.get()->format = PNG_FORMAT_RGB;
   std::vector<std::uint8_t> buffer(width * height * 3);

@@ -263,10 +263,27 @@ Dataset ReadCarmen(const std::filesystem::path& path, const CarmenReadOptions& o
       }
     } catch (const InputError& e) {
       if (!options.lenient) throw;
-      if (counts.skipped++ == 0) counts.first_skip_reason = e.what();
+      if (counts.skipped++ == 0) {
+        counts.first_skip_line = e.line();
+        counts.first_skip_reason = e.message();
+      }
     }
   }
   counts.lines = reader.line_number();
+  if (dataset.scans.empty()) {
+    // Nothing can be mapped or described from it: most likely not a CARMEN log at all.
+    std::string what = "no laser scans (FLASER or ROBOTLASER1 lines) in its " +
+                       std::to_string(counts.lines) + " lines";
+    if (!dataset.odometry.empty()) {
+      what += ", only " + std::to_string(dataset.odometry.size()) + " odometry readings";
+    }
+    if (counts.skipped > 0) {
+      what += "; " + std::to_string(counts.skipped) +
+              " malformed lines were skipped, the first at line " +
+              std::to_string(counts.first_skip_line) + ": " + counts.first_skip_reason;
+    }
+    throw InputError(reader.source(), 0, what);
+  }
 
   const double front_max = CarmenRangeMax(dataset.params, false);
   const double rear_max = CarmenRangeMax(dataset.params, true);
@@ -285,6 +302,7 @@ Dataset ReadCarmen(const std::filesystem::path& path, const CarmenReadOptions& o
       }
     }
   }
+  dataset.skipped_lines = counts.skipped;
   if (stats != nullptr) *stats = std::move(counts);
   return dataset;
 }

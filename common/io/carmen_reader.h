@@ -17,7 +17,8 @@ struct CarmenReadOptions {
 struct CarmenReadStats {
   std::size_t lines = 0;          // lines read, comments and blanks included
   std::size_t skipped = 0;        // malformed lines skipped in lenient mode
-  std::string first_skip_reason;  // "FILE:LINE: what was wrong" of the first skipped line
+  std::size_t first_skip_line = 0;
+  std::string first_skip_reason;  // what was wrong with that line, without the file's name
 };
 
 // Reads a CARMEN text log (plain, gzip or bzip2). FLASER and ROBOTLASER1 lines become
@@ -25,7 +26,8 @@ struct CarmenReadStats {
 // PARAM lines Dataset::params, all in log order; TRUEPOS lines give the true pose of the scans
 // with the same ipc_timestamp. Comments, blank lines and other messages (SYNC, NMEA-*, ...) are
 // ignored. A malformed line is an InputError saying where and what was expected, unless
-// options.lenient. stats, when given, receives the counts.
+// options.lenient; so is a log without a single laser scan. stats, when given, receives the
+// counts.
 Dataset ReadCarmen(const std::filesystem::path& path, const CarmenReadOptions& options = {},
                    CarmenReadStats* stats = nullptr);
 

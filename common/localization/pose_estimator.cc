@@ -1,5 +1,8 @@
 #include "common/localization/pose_estimator.h"
 
+#include <fmt/format.h>
+
+#include <cmath>
 #include <limits>
 #include <memory>
 #include <string>
@@ -8,6 +11,7 @@
 #include "common/localization/scan_match_problem.h"
 #include "common/optim/evolve.h"
 #include "common/optim/exhaustive_search.h"
+#include "common/transform/angle_units.h"
 #include "common/util/error.h"
 #include "common/util/finite_checks.h"
 
@@ -58,6 +62,15 @@ IslandModelParams IslandModelOf(const EstimatorParams& params) {
   return island;
 }
 
+double HeadingsPerScan(const EstimatorParams& params) {
+  return 2.0 * std::round(params.heading_half_window / params.heading_step) + 1.0;
+}
+
+double LatticePosesPerScan(const EstimatorParams& params) {
+  const double side = std::floor(params.window / params.exhaustive_step) + 1.0;
+  return side * side * (params.estimator == EstimatorKind::k3D ? HeadingsPerScan(params) : 1.0);
+}
+
 void ValidateEstimatorParams(const EstimatorParams& params) {
   if (!(params.window > 0.0)) throw Error("search window must be positive");
   if (!IsFiniteNonNegative(params.fitness.f2_base)) {
@@ -72,10 +85,22 @@ void ValidateEstimatorParams(const EstimatorParams& params) {
   if (!(params.heading_half_window >= 0.0) || params.heading_half_window > 3.14159265358979323846) {
     throw Error("heading window must be between 0 and 180 degrees");
   }
-  if (!(params.heading_step > 0.0)) throw Error("heading step must be positive");
+  if (!(params.heading_step >= kMinHeadingStep)) {
+    throw Error(fmt::format("heading step must be at least {} degrees", Degrees(kMinHeadingStep)));
+  }
+  if (!(HeadingsPerScan(params) <= kMaxHeadingsPerScan)) {
+    throw Error(fmt::format("heading step: {:.0f} headings per scan, more than {:.0f}",
+                            HeadingsPerScan(params), kMaxHeadingsPerScan));
+  }
   if (!(params.exhaustive_step > 0.0)) throw Error("exhaustive step must be positive");
   if (params.generations == 0) throw Error("generations must be at least 1");
-  if (params.optimizer == OptimizerKind::kExhaustive) return;
+  if (params.optimizer == OptimizerKind::kExhaustive) {
+    if (!(LatticePosesPerScan(params) <= kMaxLatticePosesPerScan)) {
+      throw Error(fmt::format("exhaustive step: {:.0f} poses per scan, more than {:.0f}",
+                              LatticePosesPerScan(params), kMaxLatticePosesPerScan));
+    }
+    return;
+  }
   MakeAlgorithm(params.algorithm);  // throws on parameters the algorithm cannot work with
   if (params.optimizer == OptimizerKind::kIsland) ValidateIslandModelParams(IslandModelOf(params));
 }

@@ -94,6 +94,19 @@ PoseEstimate EstimatePose(const RangeRenderer& renderer, const LaserScan& scan, 
 // The island model `--optimizer island` runs: islands of params.algorithm.
 IslandModelParams IslandModelOf(const EstimatorParams& params);
 
+// Searches whose size the parameters fix are refused above these, per scan: a step too fine for
+// any machine would otherwise exhaust memory or run for days.
+inline constexpr double kMaxHeadingsPerScan = 1e5;
+inline constexpr double kMaxLatticePosesPerScan = 1e8;
+// The 2D estimator matches the scan at each heading of its window, beam by beam, so the step
+// must not split a beam's spacing beyond this either.
+inline constexpr double kMinHeadingStep = 1e-6;  // radians
+
+// How many headings the search of each scan tries.
+double HeadingsPerScan(const EstimatorParams& params);
+// How many poses the exhaustive optimizer evaluates for each scan.
+double LatticePosesPerScan(const EstimatorParams& params);
+
 // Throws Error naming the offending parameter when params cannot work.
 void ValidateEstimatorParams(const EstimatorParams& params);
 

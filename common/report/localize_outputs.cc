@@ -50,6 +50,9 @@ std::vector<proto::ResultFile> LocalizeOutputs(const MapModel& map, const Datase
   for (const OdometryStall& stall : result.odometry_stalls) {
     *report.add_odometry_stalls() = ToProto(stall);
   }
+  if (auto warnings = LogWarningsOf(dataset, result.trajectory.size())) {
+    *report.mutable_log_warnings() = *warnings;
+  }
 
   if (!truth.empty()) {
     *report.mutable_absolute_errors() = ToProto(ComputeAbsoluteErrors(result.trajectory, truth));

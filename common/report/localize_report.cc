@@ -2,13 +2,16 @@
 
 #include <google/protobuf/util/json_util.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
 #include <string>
 
 #include "common/io/file_bytes.h"
+#include "common/sensor/log_anomalies.h"
 #include "common/transform/angle_units.h"
+#include "common/util/counted.h"
 #include "common/util/error.h"
 
 namespace evoslam {
@@ -114,6 +117,64 @@ void WriteJson(const google::protobuf::Message& message, const std::filesystem::
   WriteFileBytes(path, json);
 }
 
+std::optional<proto::LogWarnings> LogWarningsOf(const Dataset& dataset, std::size_t scans) {
+  const LogAnomalies anomalies =
+      FindLogAnomalies(std::span<const LaserScan>(dataset.scans).first(scans));
+  if (dataset.skipped_lines == 0 && anomalies.jumps.empty() && anomalies.reversals.empty()) {
+    return std::nullopt;
+  }
+  proto::LogWarnings w;
+  w.set_skipped_lines(dataset.skipped_lines);
+  w.set_typical_step_m(anomalies.typical_step_m);
+  for (const OdometryJump& jump : anomalies.jumps) {
+    proto::OdometryJumpRecord& r = *w.add_odometry_jumps();
+    r.set_from(static_cast<std::uint32_t>(jump.from));
+    r.set_length_m(jump.length_m);
+  }
+  for (const TimeReversal& reversal : anomalies.reversals) {
+    proto::TimeReversalRecord& r = *w.add_time_reversals();
+    r.set_scan(static_cast<std::uint32_t>(reversal.scan));
+    r.set_back_s(reversal.back_s);
+  }
+  return w;
+}
+
+std::string FormatLogWarnings(const proto::LogWarnings& w) {
+  // Enough of a long list to find the places in the log; the whole list is in report.json.
+  constexpr int kListed = 5;
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(2);
+  if (w.skipped_lines() > 0) {
+    s << "  skipped " << Counted(w.skipped_lines(), "malformed line") << " of the log\n";
+  }
+  if (!w.odometry_jumps().empty()) {
+    s << "  odometry jumps (steps far beyond the log's " << w.typical_step_m()
+      << " m pace; the map may have a straight line through it):";
+    for (int i = 0; i < std::min(kListed, w.odometry_jumps_size()); ++i) {
+      const auto& jump = w.odometry_jumps(i);
+      s << (i == 0 ? " " : ", ") << jump.length_m() << " m from scan " << jump.from() << " to "
+        << jump.from() + 1;
+    }
+    if (w.odometry_jumps_size() > kListed)
+      s << " and " << w.odometry_jumps_size() - kListed << " more";
+    s << "\n";
+  }
+  if (!w.time_reversals().empty()) {
+    s << "  timestamps go back " << Counted(w.time_reversals_size(), "time")
+      << " (the scans are taken in file order):";
+    for (int i = 0; i < std::min(kListed, w.time_reversals_size()); ++i) {
+      const auto& reversal = w.time_reversals(i);
+      s << (i == 0 ? " " : ", ") << "at scan " << reversal.scan() << " by " << reversal.back_s()
+        << " s";
+    }
+    if (w.time_reversals_size() > kListed)
+      s << " and " << w.time_reversals_size() - kListed << " more";
+    s << "\n";
+  }
+  return s.str();
+}
+
 std::string FormatOdometryStalls(
     const google::protobuf::RepeatedPtrField<proto::OdometryStallRecord>& stalls) {
   if (stalls.empty()) return {};
@@ -158,7 +219,7 @@ std::string FormatSummary(const proto::LocalizeReport& r) {
   }
   s << ", window " << p.window_m() << " m, heading +-" << p.heading_window_deg() << " deg\n";
   s << "  runtime " << r.runtime_s() << " s (" << r.scans_per_second() << " scans/s, "
-    << r.threads() << " threads), " << r.evaluations() << " fitness evaluations\n";
+    << Counted(r.threads(), "thread") << "), " << r.evaluations() << " fitness evaluations\n";
   if (r.has_absolute_errors()) {
     s << "  RMS error vs ground truth: " << FormatAbsoluteErrors(r.absolute_errors()) << "\n";
   }
@@ -168,6 +229,7 @@ std::string FormatSummary(const proto::LocalizeReport& r) {
       << " relations): " << FormatRelationErrors(e) << "\n";
   }
   s << FormatOdometryStalls(r.odometry_stalls());
+  if (r.has_log_warnings()) s << FormatLogWarnings(r.log_warnings());
   return s.str();
 }
 

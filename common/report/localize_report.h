@@ -28,6 +28,12 @@ proto::AbsoluteErrors ToProto(const AbsoluteErrors& errors);
 proto::RelationErrors ToProto(const RelationErrors& errors, const std::string& source);
 proto::OdometryStallRecord ToProto(const OdometryStall& stall);
 
+// What to warn of in the first `scans` scans of the log: lines skipped, odometry jumps, time
+// going back; nullopt when there is nothing.
+std::optional<proto::LogWarnings> LogWarningsOf(const Dataset& dataset, std::size_t scans);
+// The summary's lines for them, each starting with two spaces.
+std::string FormatLogWarnings(const proto::LogWarnings& warnings);
+
 // The true poses of the log's first `scans` scans, stamped with the scans' timestamps; scans
 // without one are left out.
 std::vector<StampedPose> ScanTruth(const Dataset& dataset, std::size_t scans);

@@ -1,5 +1,6 @@
 #include "common/report/slam_report.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <sstream>
 
@@ -7,6 +8,7 @@
 #include "common/io/text_fields.h"
 #include "common/slam/methods/slam_methods.h"
 #include "common/slam/slam_proto.h"
+#include "common/util/counted.h"
 #include "common/util/error.h"
 
 namespace evoslam {
@@ -44,8 +46,12 @@ proto::SlamReport MakeSlamReport(const Dataset& dataset, const proto::SlamParams
     *report.add_odometry_stalls() = ToProto(stall);
   }
   if (n > 0) {
-    report.set_log_duration_s(dataset.scans[n - 1].timestamp - dataset.scans[0].timestamp);
+    const auto [earliest, latest] = std::minmax_element(
+        dataset.scans.begin(), dataset.scans.begin() + static_cast<std::ptrdiff_t>(n),
+        [](const LaserScan& a, const LaserScan& b) { return a.timestamp < b.timestamp; });
+    report.set_log_duration_s(latest->timestamp - earliest->timestamp);
   }
+  if (auto warnings = LogWarningsOf(dataset, n)) *report.mutable_log_warnings() = *warnings;
 
   const std::vector<StampedPose> truth = ScanTruth(dataset, n);
   const std::vector<StampedPose> odometry = ScanOdometry(dataset, n);
@@ -84,10 +90,11 @@ std::string FormatSlamSummary(const proto::SlamReport& r) {
   const auto& p = r.params();
   s << "SLAM (" << p.method() << ") over " << r.scans() << " scans of " << p.log() << ", "
     << r.log_duration_s() << " s of log\n";
-  s << "  time " << r.seconds() << " s (" << r.scans_per_second() << " scans/s, " << r.threads()
-    << (r.threads() == 1 ? " thread)\n" : " threads)\n");
+  s << "  time " << r.seconds() << " s (" << r.scans_per_second() << " scans/s, "
+    << Counted(r.threads(), "thread") << ")\n";
   s << FindSlamMethod(p.method()).Summary(r);
   s << FormatOdometryStalls(r.odometry_stalls());
+  if (r.has_log_warnings()) s << FormatLogWarnings(r.log_warnings());
   PrintLoops(s, r);
   if (r.has_absolute_errors()) {
     s << "  RMS error vs ground truth: " << FormatAbsoluteErrors(r.absolute_errors())

@@ -28,6 +28,7 @@ struct Dataset {
   std::vector<LaserScan> rear_scans;
   std::vector<OdometryReading> odometry;
   std::vector<std::pair<std::string, std::string>> params;  // PARAM name value, in log order
+  std::size_t skipped_lines = 0;  // malformed lines a lenient read skipped
 
   // True when every scan has a true pose.
   bool has_ground_truth() const;

@@ -76,6 +76,7 @@ DatasetSummary Summarize(const Dataset& dataset) {
         std::max(s.largest_catch_up_deg, Degrees(std::abs(run.catch_up.theta())));
   }
   s.has_ground_truth = dataset.has_ground_truth();
+  s.anomalies = FindLogAnomalies(dataset.scans);
   return s;
 }
 
@@ -101,6 +102,27 @@ std::string FormatSummary(const DatasetSummary& s) {
     out << s.odometry_repeats << " runs of scans, the longest " << s.longest_odometry_repeat
         << "; the steps that end them up to " << s.largest_catch_up_m << " m and "
         << std::setprecision(1) << s.largest_catch_up_deg << " deg\n";
+  }
+  out << "odometry jumps:    ";
+  if (s.anomalies.jumps.empty()) {
+    out << "none\n";
+  } else {
+    out << s.anomalies.jumps.size() << " steps far beyond the " << s.anomalies.typical_step_m
+        << " m pace:";
+    for (const OdometryJump& jump : s.anomalies.jumps) {
+      out << " " << jump.length_m << " m from scan " << jump.from << " to " << jump.from + 1 << ";";
+    }
+    out << "\n";
+  }
+  out << "time going back:   ";
+  if (s.anomalies.reversals.empty()) {
+    out << "never\n";
+  } else {
+    out << s.anomalies.reversals.size() << " times, the scans are taken in file order:";
+    for (const TimeReversal& reversal : s.anomalies.reversals) {
+      out << " at scan " << reversal.scan << " by " << reversal.back_s << " s;";
+    }
+    out << "\n";
   }
   out << "ground truth:      " << (s.has_ground_truth ? "yes" : "no") << "\n";
   return out.str();

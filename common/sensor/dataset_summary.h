@@ -5,6 +5,7 @@
 #include <string>
 
 #include "common/sensor/dataset.h"
+#include "common/sensor/log_anomalies.h"
 
 namespace evoslam {
 
@@ -32,6 +33,7 @@ struct DatasetSummary {
   double largest_catch_up_m = 0.0;
   double largest_catch_up_deg = 0.0;
   bool has_ground_truth = false;
+  LogAnomalies anomalies;  // of the front scans
 };
 
 DatasetSummary Summarize(const Dataset& dataset);

@@ -8,6 +8,7 @@
 #include "common/io/carmen_reader.h"
 #include "common/io/relations.h"
 #include "common/report/slam_report.h"
+#include "common/util/counted.h"
 
 namespace evoslam {
 
@@ -19,11 +20,12 @@ std::filesystem::path NeedDataset(const DatasetFiles& files, const proto::Datase
 
 Dataset LoadJobLog(const DatasetFiles& files, const proto::DatasetRef& log, bool lenient) {
   CarmenReadStats stats;
-  Dataset dataset = NamedInput(log, [&] {
-    return ReadCarmen(NeedDataset(files, log, "log"), {.lenient = lenient}, &stats);
-  });
+  const std::filesystem::path path = NeedDataset(files, log, "log");
+  Dataset dataset = NamedInput({{path, log.name()}},
+                               [&] { return ReadCarmen(path, {.lenient = lenient}, &stats); });
   if (stats.skipped > 0) {
-    spdlog::warn("{}: skipped {} malformed lines (first: {})", log.name(), stats.skipped,
+    spdlog::warn("{}: skipped {} (the first, line {}: {})", log.name(),
+                 Counted(stats.skipped, "malformed line"), stats.first_skip_line,
                  stats.first_skip_reason);
   }
   dataset.source = log.name();
@@ -36,7 +38,7 @@ std::optional<NamedRelations> LoadJobRelations(const DatasetFiles& files,
   if (relations.sha256().empty()) return std::nullopt;
   const std::filesystem::path path = NeedDataset(files, relations, "relations");
   NamedRelations named{relations.name(),
-                       NamedInput(relations, [&] { return ReadRelations(path); })};
+                       NamedInput({{path, relations.name()}}, [&] { return ReadRelations(path); })};
   if (ComputeRelationErrors(ScanOdometry(log, log.scans.size()), named.relations).relations == 0) {
     throw InputError(named.source, 0,
                      "none of its " + std::to_string(named.relations.size()) +

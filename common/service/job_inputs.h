@@ -2,6 +2,7 @@
 #define EVOSLAM_COMMON_SERVICE_JOB_INPUTS_H_
 
 #include <filesystem>
+#include <initializer_list>
 #include <optional>
 #include <string>
 
@@ -17,18 +18,28 @@ namespace evoslam {
 std::filesystem::path NeedDataset(const DatasetFiles& files, const proto::DatasetRef& ref,
                                   const char* what);
 
+// A job's input file as this host reads it (`path`, in the dataset cache) and as whoever
+// submitted the job named it.
+struct CachedInput {
+  std::filesystem::path path;
+  std::string name;
+};
+
 // Runs `read`, naming a bad input by the name it was uploaded under instead of the cache path
-// it is read from, which means nothing to whoever submitted the job.
+// it is read from, which means nothing to whoever submitted the job. Of an input read together
+// with others (a map's YAML and its image), the one at fault is named.
 template <typename Read>
-auto NamedInput(const proto::DatasetRef& ref, Read read) {
+auto NamedInput(std::initializer_list<CachedInput> inputs, Read read) {
   try {
     return read();
   } catch (const InputError& e) {
-    const std::string what = e.what();
-    const std::string prefix =
-        e.source() + (e.line() > 0 ? ":" + std::to_string(e.line()) : std::string()) + ": ";
-    throw InputError(ref.name(), e.line(),
-                     what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what);
+    const std::filesystem::path source = std::filesystem::path(e.source()).lexically_normal();
+    for (const CachedInput& input : inputs) {
+      if (source == input.path.lexically_normal()) {
+        throw InputError(input.name, e.line(), e.message());
+      }
+    }
+    throw;
   }
 }
 

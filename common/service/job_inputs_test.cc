@@ -5,8 +5,10 @@
 
 #include <string>
 
+#include "common/localization/localize_params.h"
 #include "common/sensor/dataset.h"
 #include "common/service/dataset_files.h"
+#include "common/service/localize_inputs.h"
 #include "common/util/error.h"
 #include "common/util/sha256.h"
 #include "common/util/temp_dir.h"
@@ -67,6 +69,55 @@ TEST(LoadJobRelationsTest, RelationsThatJoinNoTwoScansOfTheLogAreRefusedByName) 
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), HasSubstr("bad.relations:1"));
   }
+}
+
+// A log of two scans, for jobs whose map is what a test is about.
+constexpr const char* kTwoScanLog =
+    "FLASER 3 1 1 1 0 0 0 0 0 0 1.0 host 1.0\nFLASER 3 1 1 1 0 0 0 0 0 0 2.0 host 2.0\n";
+
+// A map_server YAML file for the image `image`, 10 cm cells.
+std::string MapYaml(const std::string& image) {
+  return "image: " + image +
+         "\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\n"
+         "free_thresh: 0.196\n";
+}
+
+// The InputError that loading the inputs of a localize job with this map throws.
+InputError LocalizeInputsError(DatasetFiles& files, const proto::DatasetRef& map,
+                               const proto::DatasetRef& image = {}) {
+  const proto::DatasetRef log = Keep(files, "walk.clf", kTwoScanLog);
+  try {
+    LoadLocalizeInputs(files, log, map, image, ToProto(LocalizeOptions{}));
+  } catch (const InputError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "the map was accepted";
+  return InputError("", 0, "");
+}
+
+TEST(LoadLocalizeInputsTest, AFaultInAMapsImageNamesTheImageAsUploaded) {
+  TempDir dir;
+  DatasetFiles files(dir / "cache");
+  const proto::DatasetRef yaml = Keep(files, "site/map.yaml", MapYaml("map.pgm"));
+  // Line 5 holds a value above maxval.
+  const proto::DatasetRef pgm = Keep(files, "site/map.pgm", "P2\n2 2\n255\n0 0\n0 300\n");
+  const InputError e = LocalizeInputsError(files, yaml, pgm);
+  EXPECT_EQ(e.source(), "site/map.pgm");
+  EXPECT_EQ(e.line(), 5u);
+}
+
+TEST(LoadLocalizeInputsTest, AMapWithoutWallsIsRefused) {
+  TempDir dir;
+  DatasetFiles files(dir / "cache");
+  const InputError lines = LocalizeInputsError(files, Keep(files, "empty.lines", "# no walls\n"));
+  EXPECT_EQ(lines.source(), "empty.lines");
+  EXPECT_THAT(lines.message(), HasSubstr("no walls"));
+
+  const proto::DatasetRef yaml = Keep(files, "free.yaml", MapYaml("free.pgm"));
+  const proto::DatasetRef pgm = Keep(files, "free.pgm", "P2\n2 1\n255\n255 255\n");
+  const InputError grid = LocalizeInputsError(files, yaml, pgm);
+  EXPECT_EQ(grid.source(), "free.yaml");
+  EXPECT_THAT(grid.message(), HasSubstr("no occupied cell"));
 }
 
 }  // namespace

@@ -29,14 +29,19 @@ std::shared_ptr<const LocalizeInputs> LoadLocalizeInputs(DatasetFiles& files,
   std::filesystem::path map_path = NeedDataset(files, map, "map");
   if (params.map_from_log()) {
     return std::make_shared<const LocalizeInputs>(LocalizeInputs{
-        std::move(options), std::move(dataset), NamedInput(map, [&] {
+        std::move(options), std::move(dataset), NamedInput({{map_path, map.name()}}, [&] {
           return MapModel(GridFromLog(map_path, params.grid_resolution_m(), params.lenient()));
         })});
   }
-  if (!map_image.sha256().empty()) map_path = files.MapWithImage(map, map_image);
-  return std::make_shared<const LocalizeInputs>(
-      LocalizeInputs{std::move(options), std::move(dataset),
-                     NamedInput(map, [&] { return LoadMapModel(map_path); })});
+  std::filesystem::path image_path;
+  if (!map_image.sha256().empty()) {
+    map_path = files.MapWithImage(map, map_image);
+    image_path = map_path.parent_path() / NeedDataset(files, map_image, "map image").filename();
+  }
+  return std::make_shared<const LocalizeInputs>(LocalizeInputs{
+      std::move(options), std::move(dataset),
+      NamedInput({{map_path, map.name()}, {image_path, map_image.name()}},
+                 [&] { return LoadMapModel(map_path); })});
 }
 
 }  // namespace evoslam

@@ -1,6 +1,7 @@
 #include "common/sim/simulator.h"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <system_error>
@@ -39,9 +40,25 @@ void CheckOptions(const SimulationOptions& options) {
 
 }  // namespace
 
+double RoutePoseCount(const World& world, const SimulationOptions& options) {
+  double length = 0.0;
+  for (std::size_t i = 1; i < world.waypoints.size(); ++i) {
+    length += (world.waypoints[i] - world.waypoints[i - 1]).norm();
+  }
+  const double step = options.step > 0.0 ? options.step : world.scan_spacing;
+  return std::floor(length / step) + 1.0;
+}
+
 Dataset Simulate(const World& world, const SimulationOptions& options) {
   CheckOptions(options);
   const double step = options.step > 0.0 ? options.step : world.scan_spacing;
+  // The whole route is laid out before max_scans cuts it, so a step too fine for memory must be
+  // refused before it is.
+  if (const double poses = RoutePoseCount(world, options); !(poses <= kMaxSimulatedScans)) {
+    throw Error(fmt::format(
+        "simulation: a step of {} m makes {:.0f} poses of world \"{}\"'s route, more than {:.0f}",
+        step, poses, world.name, kMaxSimulatedScans));
+  }
   std::vector<Pose2> route = RouteTrajectory(world, step);
   if (options.max_scans > 0 && route.size() > options.max_scans) route.resize(options.max_scans);
 

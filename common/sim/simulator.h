@@ -24,11 +24,18 @@ struct SimulationOptions {
   std::uint64_t seed = 1;
 };
 
+// The most scans a simulation makes, or poses its route takes, at once.
+inline constexpr double kMaxSimulatedScans = 1e6;
+
+// How many poses the route of `world` takes at the options' step, counted before any is made.
+double RoutePoseCount(const World& world, const SimulationOptions& options);
+
 // Drives the world's route and logs a scan every `step` metres, as a raw robot log would hold
 // it: scan i at kSimulationEpoch + i * scan_interval, with its true pose, the drifting odometry
 // (also as the scan's stated pose) and ranges cast from the true pose with the noise model
 // applied; plus one ODOM reading per scan. The same options and seed give the same dataset.
-// Throws Error for invalid options or a route that comes too close to a wall.
+// Throws Error for invalid options, a route of more than kMaxSimulatedScans poses, or a route
+// that comes too close to a wall.
 Dataset Simulate(const World& world, const SimulationOptions& options);
 
 // Writes dir/log.clf (CARMEN, with TRUEPOS), dir/world.lines (the walls) and dir/truth.txt

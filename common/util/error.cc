@@ -12,6 +12,6 @@ std::string Located(const std::string& source, std::size_t line, const std::stri
 }  // namespace
 
 InputError::InputError(const std::string& source, std::size_t line, const std::string& message)
-    : Error(Located(source, line, message)), source_(source), line_(line) {}
+    : Error(Located(source, line, message)), source_(source), line_(line), message_(message) {}
 
 }  // namespace evoslam

@@ -21,10 +21,12 @@ class InputError : public Error {
 
   const std::string& source() const { return source_; }
   std::size_t line() const { return line_; }
+  const std::string& message() const { return message_; }  // what() without the place
 
  private:
   std::string source_;
   std::size_t line_;
+  std::string message_;
 };
 
 }  // namespace evoslam

@@ -1,11 +1,14 @@
 #ifndef EVOSLAM_COMMON_UTIL_PROGRAM_OPTIONS_H_
 #define EVOSLAM_COMMON_UTIL_PROGRAM_OPTIONS_H_
 
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 
 namespace evoslam {
 
@@ -17,7 +20,14 @@ inline void AddLogLevelOption(CLI::App& app, std::string& level) {
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
 }
 
-// Parses the command line and sets the log level. Returns the status to exit with at once
+// Sends the program's log to stderr, so that stdout carries only what it is asked for.
+inline void LogToStderr(const std::string& program) {
+  auto logger = spdlog::stderr_color_mt(program);
+  logger->set_pattern("[%H:%M:%S.%e] [%^%l%$] %v");
+  spdlog::set_default_logger(std::move(logger));
+}
+
+// Parses the command line, logs to stderr and sets the log level. Returns the status to exit with at once
 // (0 after --help, 2 for a bad command line), or nullopt to go on.
 inline std::optional<int> ParseProgramOptions(CLI::App& app, int argc, char** argv,
                                               const std::string& level) {
@@ -26,6 +36,7 @@ inline std::optional<int> ParseProgramOptions(CLI::App& app, int argc, char** ar
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
+  LogToStderr(std::filesystem::path(argv[0]).filename().string());
   spdlog::set_level(spdlog::level::from_str(level));
   return std::nullopt;
 }

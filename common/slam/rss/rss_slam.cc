@@ -322,13 +322,15 @@ RssSlamResult RssSlamDriver::Run() {
 RssSlamResult RunRssSlam(const Dataset& dataset, const proto::SlamParams& params,
                          const RssSlamRuntime& runtime) {
   ValidateRssSlamParams(params.rss());
+  if (dataset.scans.empty()) throw Error(dataset.source + ": the log has no laser scans");
+  // On the readings as logged, so that a jump is named at the scans where it happened and not
+  // where filling a stall spread it.
+  CheckOdometrySteps(dataset);
   std::vector<OdometryStall> stalls =
       FindOdometryStalls(dataset.scans, BaseErrorCube(params.rss().local()));
   const std::size_t n = ScansToMap(dataset, params);
   std::erase_if(stalls, [n](const OdometryStall& stall) { return stall.first >= n; });
   RssSlamResult result = RunWithOdometryStallsFilled(dataset, stalls, [&](const Dataset& log) {
-    if (log.scans.empty()) throw Error(log.source + ": the log has no laser scans");
-    CheckOdometrySteps(log);
     return RssSlamDriver(log, params, runtime).Run();
   });
   result.odometry_stalls = std::move(stalls);
