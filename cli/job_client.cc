@@ -40,12 +40,14 @@ proto::JobStatus WatchWithProgress(ServiceClient& client, const std::string& job
   });
 }
 
-std::vector<proto::ResultFile> FollowToResult(ServiceClient& client, const std::string& job_id) {
+std::vector<proto::ResultFile> FollowToResult(ServiceClient& client, const std::string& job_id,
+                                              bool name_job) {
   const proto::JobStatus final_status = WatchWithProgress(client, job_id);
+  const std::string job = name_job ? job_id + " " : "the job ";
   if (final_status.state() == proto::JOB_STATE_FAILED) {
-    throw Error(job_id + " failed: " + final_status.error());
+    throw Error(name_job ? job_id + " failed: " + final_status.error() : final_status.error());
   }
-  if (final_status.state() == proto::JOB_STATE_CANCELLED) throw Error(job_id + " was cancelled");
+  if (final_status.state() == proto::JOB_STATE_CANCELLED) throw Error(job + "was cancelled");
   return client.Result(job_id);
 }
 

@@ -20,7 +20,8 @@ proto::JobStatus WatchWithProgress(ServiceClient& client, const std::string& job
 
 // Follows a job to its end as WatchWithProgress does; throws Error when it failed or was
 // cancelled. Returns its files.
-std::vector<proto::ResultFile> FollowToResult(ServiceClient& client, const std::string& job_id);
+std::vector<proto::ResultFile> FollowToResult(ServiceClient& client, const std::string& job_id,
+                                              bool name_job = true);
 
 // Writes a job's files into `dir` (created if needed).
 void WriteResultFiles(const std::vector<proto::ResultFile>& files,

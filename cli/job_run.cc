@@ -54,8 +54,14 @@ void RunJob(ServiceClient& client, const proto::JobSpec& spec, const JobRunArgs&
     std::printf("%s\n", job_id.c_str());
     return;
   }
-  spdlog::info("{}: {}", job_id, what);
-  const std::vector<proto::ResultFile> files = FollowToResult(client, job_id);
+  // An embedded job is the command's own work: its id would mean nothing to the user.
+  const bool embedded = a.service.coordinator.empty();
+  if (embedded) {
+    spdlog::info("{}", what);
+  } else {
+    spdlog::info("{}: {}", job_id, what);
+  }
+  const std::vector<proto::ResultFile> files = FollowToResult(client, job_id, !embedded);
   WriteResultFiles(files, a.out);
   std::string names;
   for (const proto::ResultFile& f : files) {

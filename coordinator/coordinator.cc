@@ -689,7 +689,9 @@ void Coordinator::Impl::RunJob(const std::string& job_id) {
   } catch (const JobInterrupted& e) {
     spdlog::log(notice_, "{}: {}", job_id, e.what());
   } catch (const std::exception& e) {
-    spdlog::warn("{}: failed: {}", job_id, e.what());
+    // Quiet (embedded), the client that waits for the job reports its failure, once.
+    spdlog::log(options_.quiet ? spdlog::level::debug : spdlog::level::warn, "{}: failed: {}",
+                job_id, e.what());
     std::lock_guard lock(store_mutex_);
     store_.Finish(job_id, proto::JOB_STATE_FAILED, e.what(), UnixNow());
   }

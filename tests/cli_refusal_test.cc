@@ -182,6 +182,9 @@ TEST_F(CliRefusalTest, AJumpTooLongToMapIsRefusedAtTheScansWhereItHappened) {
   const auto slam = RunCli("slam --log " + log + " --out " + Path("slam"));
   EXPECT_EQ(slam.status, 1) << slam.output;
   EXPECT_THAT(slam.output, HasSubstr("m from scan 8 to scan 9"));
+  // Said once, as the command's own failure: no job, no coordinator.
+  EXPECT_EQ(slam.output.find("odometry moves"), slam.output.rfind("odometry moves")) << slam.output;
+  EXPECT_THAT(slam.output, ::testing::Not(HasSubstr("job-")));
 }
 
 TEST_F(CliRefusalTest, TimestampsThatGoBackAreReportedAndTheLogLastsFromEarliestToLatest) {
