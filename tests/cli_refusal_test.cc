@@ -111,7 +111,7 @@ TEST_F(CliRefusalTest, ALogWithoutScansIsAnErrorNotAnEmptyDescription) {
     EXPECT_EQ(r.status, 1) << log << "\n" << r.output;
     EXPECT_THAT(r.output, HasSubstr(log + ": no laser scans"));
   }
-  EXPECT_THAT(RunCli("info " + odometry).output, HasSubstr("only 1 odometry readings"));
+  EXPECT_THAT(RunCli("info " + odometry).output, HasSubstr("only 1 odometry reading"));
 }
 
 TEST_F(CliRefusalTest, LocalizingInAMapWithoutWallsIsAnError) {

@@ -155,7 +155,8 @@ TEST_F(CliTest, MissingFileIsAClearError) {
 
 TEST_F(CliTest, MalformedLogNamesFileAndLine) {
   std::ofstream(Path("bad.clf"))
-      << "# header\nODOM 0 0 0 0 0 0 1.0 nohost 0\nFLASER 3 1.0 2.0 x 0 0 0 0 0 0 1.0 nohost 0\n";
+      << "# header\nODOM 0 0 0 0 0 0 1.0 nohost 0\nFLASER 3 1.0 2.0 x 0 0 0 0 0 0 1.0 nohost 0\n"
+      << "FLASER 3 1.0 2.0 3.0 0 0 0 0 0 0 2.0 nohost 0\n";
   const Result r = RunCli("info " + Path("bad.clf"));
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.output.find("bad.clf:3"), std::string::npos) << r.output;

@@ -12,6 +12,7 @@
 #include "common/io/carmen_format.h"
 #include "common/io/line_reader.h"
 #include "common/io/text_fields.h"
+#include "common/util/counted.h"
 #include "common/util/error.h"
 #include "common/util/finite_checks.h"
 
@@ -275,11 +276,10 @@ Dataset ReadCarmen(const std::filesystem::path& path, const CarmenReadOptions& o
     std::string what = "no laser scans (FLASER or ROBOTLASER1 lines) in its " +
                        std::to_string(counts.lines) + " lines";
     if (!dataset.odometry.empty()) {
-      what += ", only " + std::to_string(dataset.odometry.size()) + " odometry readings";
+      what += ", only " + Counted(dataset.odometry.size(), "odometry reading");
     }
     if (counts.skipped > 0) {
-      what += "; " + std::to_string(counts.skipped) +
-              " malformed lines were skipped, the first at line " +
+      what += "; skipped " + Counted(counts.skipped, "malformed line") + ", the first at line " +
               std::to_string(counts.first_skip_line) + ": " + counts.first_skip_reason;
     }
     throw InputError(reader.source(), 0, what);
