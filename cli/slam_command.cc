@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -13,11 +14,13 @@
 #include "cli/job_run.h"
 #include "cli/option_parsing.h"
 #include "cli/service_session.h"
+#include "common/io/file_bytes.h"
 #include "common/sim/simulator.h"
 #include "common/sim/world.h"
 #include "common/slam/methods/slam_methods.h"
 #include "common/slam/slam_params.h"
 #include "common/util/error.h"
+#include "common/util/temp_dir.h"
 
 namespace evoslam::cli {
 namespace {
@@ -158,12 +161,16 @@ void Run(const SlamArgs& a) {
     throw CLI::ValidationError("--world writes the log it simulates into --out: give --out");
   }
 
+  // The simulated drive is staged and joins --out only once the job is under way, so that a run
+  // refused for its parameters leaves nothing behind.
+  std::optional<TempDir> staged;
   if (!world.empty()) {
     const World w = BuiltinWorld(world);
     const Dataset dataset = Simulate(w, WorldDrive(complete.seed(), complete.max_scans()));
-    WriteSimulation(dataset, w, a.run.out);
+    staged.emplace("evoslam-world");
+    WriteSimulation(dataset, w, staged->path());
     // On stderr with the job's progress: with --detach, stdout is the job id alone.
-    spdlog::info("simulated {} scans of {} into {}/{{log.clf,world.lines,truth.txt}}",
+    spdlog::info("simulated {} scans of {} for {}/{{log.clf,world.lines,truth.txt}}",
                  dataset.scans.size(), w.name, a.run.out);
   }
 
@@ -174,9 +181,18 @@ void Run(const SlamArgs& a) {
   proto::JobSpec spec;
   spec.set_kind(proto::JOB_KIND_SLAM);
   *spec.mutable_slam() = params;
-  *spec.mutable_log() = client.Upload(log);
+  *spec.mutable_log() =
+      staged ? client.UploadBytes(log, ReadFileBytes(*staged / "log.clf")) : client.Upload(log);
   if (!a.relations.empty()) *spec.mutable_relations() = client.Upload(a.relations);
   RunJob(client, spec, a.run, "SLAM (" + complete.method() + ") of " + log);
+  if (staged) {
+    // The run's own files (truth.txt among them) stand; the simulation adds the log and walls.
+    fs::create_directories(a.run.out);
+    for (const char* name : {"log.clf", "world.lines", "truth.txt"}) {
+      const fs::path to = fs::path(a.run.out) / name;
+      if (!fs::exists(to)) fs::copy_file(*staged / name, to);
+    }
+  }
   if (!a.run.detach) {
     std::printf("  map with trajectory: %s\n",
                 (fs::path(a.run.out) / "map_trajectory.png").string().c_str());

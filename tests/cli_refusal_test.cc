@@ -84,6 +84,14 @@ TEST_F(CliRefusalTest, AnOutputFolderThatCannotBeWrittenIsRefusedBeforeTheLogIsR
   EXPECT_EQ(Entries(), 1u);
 }
 
+TEST_F(CliRefusalTest, ASimulatedDriveWhoseMapCannotBeBuiltLeavesNothingBehind) {
+  const auto r =
+      RunCli("slam --world office-cluster --max-scans 20 --resolution 1e-9 --out " + Path("slam"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "slam")) << r.output;
+  EXPECT_EQ(Entries(), 0u);
+}
+
 TEST_F(CliRefusalTest, StepsTooFineForAnyMachineAreRefusedNamingTheFlag) {
   const std::string sim = Path("sim");
   ASSERT_EQ(RunCli("simulate --world s-corridor --max-scans 5 --out " + sim).status, 0);
