@@ -19,6 +19,13 @@ if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
     list(APPEND EVOSLAM_WARNINGS -Wno-maybe-uninitialized)
   endif()
 endif()
+# Test binaries' own code is set-up and assertions; what they exercise runs in the libraries. In
+# the sanitizer build they compile at -Og, which halves their compile time against -O1 without
+# slowing the libraries' hot loops.
+set(EVOSLAM_TEST_OPTIONS ${EVOSLAM_WARNINGS})
+if(EVOSLAM_SANITIZE)
+  list(APPEND EVOSLAM_TEST_OPTIONS -Og)
+endif()
 # ctest runs test binaries side by side; OpenMP threads that spin while waiting would then steal
 # the cores the other binary's threads need and slow both by an order of magnitude.
 set(EVOSLAM_TEST_ENVIRONMENT "OMP_WAIT_POLICY=PASSIVE")
@@ -48,7 +55,7 @@ function(evoslam_module NAME)
   endif()
   if(EVOSLAM_BUILD_TESTS AND tests)
     add_executable(${target}_tests ${tests})
-    target_compile_options(${target}_tests PRIVATE ${EVOSLAM_WARNINGS})
+    target_compile_options(${target}_tests PRIVATE ${EVOSLAM_TEST_OPTIONS})
     target_compile_definitions(${target}_tests PRIVATE
       EVOSLAM_DATA_DIR="${EVOSLAM_DATA_DIR}"
       EVOSLAM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")

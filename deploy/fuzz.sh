@@ -4,7 +4,7 @@
 # non-zero exit and leaves the crashing input in build-fuzz/crashes/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-./deploy/install-deps.sh
+./deploy/install-deps.sh --dev
 seconds=${FUZZ_SECONDS:-150}
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DEVOSLAM_BUILD_FUZZ=ON -DEVOSLAM_BUILD_TESTS=OFF -DEVOSLAM_BUILD_BENCH=OFF

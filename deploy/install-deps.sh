@@ -1,16 +1,24 @@
 #!/usr/bin/env bash
 # Installs what evoslam needs to build, test and benchmark, from Debian 12 packages only.
 # Idempotent and non-interactive: packages already present are not touched.
+# Usage: deploy/install-deps.sh [--dev]
+#   --dev  also clang-format (the code's style) and clang (deploy/fuzz.sh's libFuzzer targets),
+#          which building and testing do not need.
 set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config git bzip2
   libeigen3-dev libzmq3-dev cppzmq-dev libsodium-dev libprotobuf-dev protobuf-compiler
   libspdlog-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
-  zlib1g-dev libbz2-dev libpng-dev libsqlite3-dev clang-format clang libpagmo-dev
+  zlib1g-dev libbz2-dev libpng-dev libsqlite3-dev libpagmo-dev
   python3  # docs/gen-configuration.py, and the test that docs/configuration.md is fresh
   iproute2  # ip, for the network namespaces of deploy/netns-test.sh
 )
+case "${1:-}" in
+  "") ;;
+  --dev) packages+=(clang-format clang) ;;
+  *) echo "install-deps: unknown option '$1' (the only option is --dev)" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do
