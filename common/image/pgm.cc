@@ -80,24 +80,15 @@ class Scanner {
   std::size_t line_ = 1;
 };
 
-}  // namespace
-
-GrayImage ReadPgm(const std::filesystem::path& path, std::uint64_t max_pixels) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string(), 0, "cannot open PGM file");
-  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw InputError(path.string(), 0, "cannot read PGM file");
-
+// Reads the magic number, width and height, refusing an image of more than `max_pixels`.
+void ReadSize(Scanner& scan, const std::string& data, std::uint64_t max_pixels, GrayImage& image) {
   if (data.size() < 2 || data[0] != 'P' || (data[1] != '5' && data[1] != '2')) {
-    throw InputError(path.string(), 1, "expected a PGM file starting with P5 or P2");
+    scan.Fail("expected a PGM file starting with P5 or P2");
   }
   if (data.size() > 2 && !std::isspace(static_cast<unsigned char>(data[2])) && data[2] != '#') {
-    throw InputError(path.string(), 1, "expected whitespace after the PGM magic number");
+    scan.Fail("expected whitespace after the PGM magic number");
   }
-  const bool binary = data[1] == '5';
-  Scanner scan(data, path.string());
   scan.Skip(2);
-  GrayImage image;
   constexpr std::uint64_t kMaxSide = std::numeric_limits<int>::max();
   image.width = static_cast<int>(scan.Number("width", kMaxSide));
   image.height = static_cast<int>(scan.Number("height", kMaxSide));
@@ -108,6 +99,38 @@ GrayImage ReadPgm(const std::filesystem::path& path, std::uint64_t max_pixels) {
               " pixels, more than the " + std::to_string(std::min(max_pixels, kMaxDecodedPixels)) +
               " allowed");
   }
+}
+
+// A header is a few dozen bytes; this much also holds one with long comments.
+constexpr std::size_t kHeaderBytes = 64 * 1024;
+
+}  // namespace
+
+GrayImage ReadPgm(const std::filesystem::path& path, std::uint64_t max_pixels) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string(), 0, "cannot open PGM file");
+  // The header first, so that an image over the limit is refused before its pixels are read.
+  std::string data(kHeaderBytes, '\0');
+  in.read(data.data(), static_cast<std::streamsize>(data.size()));
+  data.resize(static_cast<std::size_t>(in.gcount()));
+  if (in.bad()) throw InputError(path.string(), 0, "cannot read PGM file");
+  if (data.size() == kHeaderBytes) {
+    GrayImage head;
+    Scanner scan(data, path.string());
+    try {
+      ReadSize(scan, data, max_pixels, head);
+    } catch (const InputError&) {
+      if (!scan.at_end()) throw;  // else the prefix cut the header short: read on
+    }
+    data.append(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (in.bad()) throw InputError(path.string(), 0, "cannot read PGM file");
+  }
+
+  const bool binary = data.size() > 1 && data[1] == '5';
+  Scanner scan(data, path.string());
+  GrayImage image;
+  ReadSize(scan, data, max_pixels, image);
+  const std::uint64_t pixels = static_cast<std::uint64_t>(image.width) * image.height;
   scan.SkipSpaceAndComments();
   const std::size_t maxval_line = scan.line();
   const std::uint64_t maxval = scan.Number("maxval", 65535);

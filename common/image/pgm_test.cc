@@ -3,9 +3,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "common/util/error.h"
 #include "common/util/temp_dir.h"
@@ -117,6 +119,36 @@ TEST_F(PgmTest, RejectsBadPlainData) {
 
 TEST_F(PgmTest, RejectsBinaryValueAboveMaxval) {
   EXPECT_THAT(ReadError(Write("v.pgm", "P5\n2 1\n100\n\x01\xc8")), HasSubstr("exceeds maxval"));
+}
+
+TEST_F(PgmTest, AnImageOverTheLimitIsRefusedFromItsHeaderAlone) {
+  // 8 GiB of pixels in a sparse file: reading them before the header's size would take minutes
+  // and the memory of the machine.
+  const fs::path path = Write("huge.pgm", "P5\n65536 131072\n255\n");
+  fs::resize_file(path, fs::file_size(path) + (std::uintmax_t{1} << 33));
+  try {
+    ReadPgm(path, 1'000'000);
+    ADD_FAILURE() << "no InputError for " << path;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.source(), path.string());
+    EXPECT_THAT(e.what(), HasSubstr("65536 x 131072 pixels, more than the 1000000 allowed"));
+  }
+}
+
+TEST_F(PgmTest, AHeaderLongerThanItsFirstBlockIsReadWhole) {
+  const std::string comment = "# " + std::string(100'000, 'c') + "\n";
+  const GrayImage image = ReadPgm(Write("long.pgm", "P5\n" + comment + "2 1\n255\n\x05\x06"));
+  EXPECT_EQ(image.width, 2);
+  EXPECT_EQ(image.height, 1);
+  EXPECT_EQ(image.pixels, (std::vector<std::uint8_t>{5, 6}));
+}
+
+TEST_F(PgmTest, APlainImageLongerThanItsFirstBlockIsReadWhole) {
+  std::string values;
+  for (int i = 0; i < 40'000; ++i) values += std::to_string(i % 200) + " ";
+  const GrayImage image = ReadPgm(Write("plain.pgm", "P2\n200 200\n255\n" + values));
+  ASSERT_EQ(image.pixels.size(), 40'000u);
+  EXPECT_EQ(image.pixels[39'999], 39'999 % 200);
 }
 
 TEST_F(PgmTest, MissingFileNamesPath) {
