@@ -65,8 +65,8 @@ HitCountGrid::HitCountGrid(double resolution, const Eigen::Vector2d& origin, int
     throw Error("hit count grid: " + std::to_string(width) + " x " + std::to_string(height) +
                 " cells is over the limit of " + std::to_string(kMaxCells));
   }
-  counts_.assign(geometry_.cell_count(), 0);
-  occupied_bits_.assign((counts_.size() + 63) / 64, 0);
+  counts_ = TiledCounts(width, height);
+  occupied_bits_.assign((geometry_.cell_count() + 63) / 64, 0);
 }
 
 std::uint32_t HitCountGrid::count(int x, int y) const {
@@ -74,18 +74,30 @@ std::uint32_t HitCountGrid::count(int x, int y) const {
     throw std::out_of_range("hit count grid: cell (" + std::to_string(x) + ", " +
                             std::to_string(y) + ") is outside the grid");
   }
-  return counts_[geometry_.Index(x, y)];
+  return counts_.get(x, y);
+}
+
+std::uint32_t HitCountGrid::count(std::size_t index) const {
+  if (index >= geometry_.cell_count()) {
+    throw std::out_of_range("hit count grid: cell " + std::to_string(index) +
+                            " is outside the grid");
+  }
+  const auto w = static_cast<std::size_t>(width());
+  return counts_.get(static_cast<int>(index % w), static_cast<int>(index / w));
 }
 
 bool HitCountGrid::Add(const Eigen::Vector2d& point, int delta) {
-  const auto index = CellIndex(point);
-  if (!index) return false;
-  std::uint32_t& c = counts_[*index];
-  const std::uint32_t before = c;
-  c = Moved(c, delta);
+  const auto cell = WorldToCell(point);
+  if (!cell) return false;
+  const std::uint32_t before = counts_.get(cell->x(), cell->y());
+  const std::uint32_t c = Moved(before, delta);
+  counts_.set(cell->x(), cell->y(), c);
   total_ = total_ - before + c;
   occupied_ = occupied_ - (before > 0) + (c > 0);
-  if ((before > 0) != (c > 0)) occupied_bits_[*index / 64] ^= std::uint64_t{1} << (*index % 64);
+  if ((before > 0) != (c > 0)) {
+    const std::size_t index = geometry_.Index(cell->x(), cell->y());
+    occupied_bits_[index / 64] ^= std::uint64_t{1} << (index % 64);
+  }
   return true;
 }
 
@@ -108,7 +120,7 @@ std::size_t HitCountGrid::AddScan(const LaserScan& scan, const Pose2& pose, int 
 }
 
 void HitCountGrid::TrackRays() {
-  crossings_.assign(counts_.size(), 0);
+  crossings_ = TiledCounts(width(), height());
   crossed_bits_.assign(occupied_bits_.size(), 0);
 }
 
@@ -127,11 +139,13 @@ void HitCountGrid::AddCrossings(const Eigen::Vector2d& from, const Eigen::Vector
   double next_x = d.x() != 0.0 ? ((d.x() > 0 ? x + 1 - a.x() : a.x() - x) * delta_x) : kNever;
   double next_y = d.y() != 0.0 ? ((d.y() > 0 ? y + 1 - a.y() : a.y() - y) * delta_y) : kNever;
   while (x != end_x || y != end_y) {
-    const std::size_t i = geometry_.Index(x, y);
-    std::uint32_t& c = crossings_[i];
-    const std::uint32_t before = c;
-    c = Moved(c, delta);
-    if ((before > 0) != (c > 0)) crossed_bits_[i / 64] ^= std::uint64_t{1} << (i % 64);
+    const std::uint32_t before = crossings_.get(x, y);
+    const std::uint32_t c = Moved(before, delta);
+    crossings_.set(x, y, c);
+    if ((before > 0) != (c > 0)) {
+      const std::size_t i = geometry_.Index(x, y);
+      crossed_bits_[i / 64] ^= std::uint64_t{1} << (i % 64);
+    }
     if (next_x < next_y) {
       if (next_x > 1.0) break;
       x += step_x;
@@ -223,19 +237,14 @@ double HitCountGrid::MeanPerOccupied() const {
 }
 
 HitCountGrid::WindowSums HitCountGrid::Window(int x0, int y0, int x1, int y1) const {
-  WindowSums sums;
-  x0 = std::max(x0, 0);
-  y0 = std::max(y0, 0);
-  x1 = std::min(x1, width());
-  y1 = std::min(y1, height());
-  for (int y = y0; y < y1; ++y) {
-    for (int x = x0; x < x1; ++x) {
-      const std::uint32_t c = counts_[geometry_.Index(x, y)];
-      sums.total += c;
-      sums.occupied += c > 0;
-    }
-  }
-  return sums;
+  const TiledCounts::Sums sums = counts_.Window(std::max(x0, 0), std::max(y0, 0),
+                                                std::min(x1, width()), std::min(y1, height()));
+  return {.total = sums.total, .occupied = sums.nonzero};
+}
+
+std::size_t HitCountGrid::bytes() const {
+  return counts_.bytes() + crossings_.bytes() +
+         (occupied_bits_.capacity() + crossed_bits_.capacity()) * sizeof(std::uint64_t);
 }
 
 }  // namespace evoslam

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/grid/grid_geometry.h"
+#include "common/grid/tiled_counts.h"
 #include "common/sensor/laser_scan.h"
 #include "common/transform/pose2.h"
 #include "common/transform/pose2_frame.h"
@@ -96,6 +97,8 @@ class GridCellSet {
 // The grid keeps the sum of all counts and the number of cells above zero as it changes, so the
 // paper's whole-map score (eq. 6: mean observations per occupied cell) costs nothing to read;
 // scores over a window (eqs. 1 and 2) cost the window's cells. The cells are a GridGeometry's.
+// The counts are kept in tiles (TiledCounts), so a grid's memory grows with the area its scans
+// cover, not with the whole grid; only its bits of occupied cells cover the whole grid.
 class HitCountGrid {
  public:
   static constexpr long long kMaxCells = 1LL << 28;
@@ -123,7 +126,7 @@ class HitCountGrid {
   // Throws std::out_of_range outside the grid.
   std::uint32_t count(int x, int y) const;
   // The count of a cell by its index; throws std::out_of_range for an index past the grid.
-  std::uint32_t count(std::size_t index) const { return counts_.at(index); }
+  std::uint32_t count(std::size_t index) const;
   // Whether a cell's count is above zero, by its index (which must lie in the grid).
   bool occupied(std::size_t index) const {
     return (occupied_bits_[index / 64] >> (index % 64)) & 1;
@@ -133,9 +136,9 @@ class HitCountGrid {
   // crosses on its way to its return (or to the laser's range where it returns nothing), the
   // rays that crossed it, and takes them back with the scan, so that the coverage, like the
   // counts, is that of the scans at the poses they were last added at. Turn it on before adding
-  // scans; it costs four bytes and a bit per cell.
+  // scans; it costs a bit per cell and four bytes per cell of the tiles the rays cross.
   void TrackRays();
-  bool tracks_rays() const { return !crossings_.empty(); }
+  bool tracks_rays() const { return !crossed_bits_.empty(); }
   // Whether a ray crosses a cell, by its index (which must lie in the grid); false without ray
   // coverage.
   bool crossed(std::size_t index) const {
@@ -181,15 +184,18 @@ class HitCountGrid {
   };
   WindowSums Window(int x0, int y0, int x1, int y1) const;
 
+  // The memory the grid keeps: its tiles of counts and crossings, and its bits.
+  std::size_t bytes() const;
+
  private:
   GridGeometry geometry_;
-  std::vector<std::uint32_t> counts_;
+  TiledCounts counts_;
   // A bit per cell, set while its count is above zero: what scoring an insertion asks of every
   // cell, in a 32nd of the memory, so that it stays in cache.
   std::vector<std::uint64_t> occupied_bits_;
   // Once TrackRays is on: the rays crossing each cell, and a bit per cell set while that is above
   // zero (read for every return the local search scores).
-  std::vector<std::uint32_t> crossings_;
+  TiledCounts crossings_;
   std::vector<std::uint64_t> crossed_bits_;
   // Adds `delta` to the crossings of the cells a ray from `from` to `to` crosses, the cell of
   // `to` left out.

@@ -99,6 +99,32 @@ TEST(HitCountGridTest, AScanAddsItsReturnsWhereTheyEndAndTakesThemBackExactly) {
   EXPECT_EQ(grid.AddScan(scan, Pose2(4.0, 0.0, 0.0)), 1u);  // one end point beyond the grid
 }
 
+// The map of a log whose odometry drifted far, at the search's 6 cm: 180 x 180 m, 9 million cells
+// (36 MB of counts were they all kept). A scan's counts keep the tiles its end points fall in.
+TEST(HitCountGridTest, KeepsCountsOnlyForTheTilesItsScansCover) {
+  HitCountGrid grid(0.06, Eigen::Vector2d(-90.0, -90.0), 3000, 3000);
+  const std::size_t bits = (3000 * 3000 + 63) / 64 * sizeof(std::uint64_t);
+  const std::size_t table = 47 * 47 * sizeof(std::vector<std::uint32_t>);
+  EXPECT_EQ(grid.bytes(), bits + table);
+  LaserScan scan;
+  scan.angle_min = -std::numbers::pi / 2;
+  scan.angle_increment = std::numbers::pi / 179;
+  scan.range_max = 50.0;
+  scan.ranges.assign(180, 4.0);  // a round room of 4 m
+  grid.AddScan(scan, Pose2(1.0, 2.0, 0.3));
+  std::set<std::pair<int, int>> tiles;
+  for (const Eigen::Vector2d& p : ReturnPoints(scan)) {
+    const Eigen::Vector2i cell = *grid.WorldToCell(Pose2Frame(Pose2(1.0, 2.0, 0.3)) * p);
+    tiles.emplace(cell.x() / TiledCounts::kTileSide, cell.y() / TiledCounts::kTileSide);
+  }
+  EXPECT_EQ(grid.bytes(), bits + table + tiles.size() * TiledCounts::kTileCells * 4);
+  EXPECT_LT(grid.bytes(), 2'000'000u);
+  // Taking the scan back leaves the tiles, and the counts zero.
+  grid.AddScan(scan, Pose2(1.0, 2.0, 0.3), -1);
+  EXPECT_EQ(grid.total(), 0u);
+  EXPECT_EQ(grid.Window(0, 0, 3000, 3000).occupied, 0u);
+}
+
 // One beam along world +x from (0.51, 0.51) to a wall at x = 1.51, one along +y that returns
 // nothing within the laser's 1.2 m: the cells each ray crosses, and the edge of them.
 TEST(HitCountGridTest, TrackedRaysMarkTheCellsTheyCrossAndLeaveTheEdgeFree) {

@@ -85,16 +85,14 @@ std::optional<OccupancySample> SampleOccupancy(const HitCountGrid& map,
   }
   const int x = static_cast<int>(u.x()), y = static_cast<int>(u.y());
   const double fx = u.x() - x, fy = u.y() - y;
-  const std::size_t i00 = static_cast<std::size_t>(y) * static_cast<std::size_t>(map.width()) +
-                          static_cast<std::size_t>(x);
-  const std::size_t i01 = i00 + static_cast<std::size_t>(map.width());
   // Binary with a share of 0, and where the block holds no count (then every cell reads 0).
   const double full = wall_share > 0.0 ? wall_share * StrongestCount(map, x, y) : 0.0;
-  const auto level = [&](std::size_t i) -> double {
-    return full > 0.0 ? std::min(1.0, map.count(i) / full) : map.occupied(i);
+  const auto level = [&](int cx, int cy) -> double {
+    return full > 0.0 ? std::min(1.0, map.count(cx, cy) / full)
+                      : map.occupied(map.geometry().Index(cx, cy));
   };
-  const double m00 = level(i00), m10 = level(i00 + 1);
-  const double m01 = level(i01), m11 = level(i01 + 1);
+  const double m00 = level(x, y), m10 = level(x + 1, y);
+  const double m01 = level(x, y + 1), m11 = level(x + 1, y + 1);
   OccupancySample s;
   s.value = (1 - fy) * ((1 - fx) * m00 + fx * m10) + fy * ((1 - fx) * m01 + fx * m11);
   s.gradient = Eigen::Vector2d((1 - fy) * (m10 - m00) + fy * (m11 - m01),
