@@ -1,5 +1,6 @@
 #include "worker/task_executor.h"
 
+#include <algorithm>
 #include <string>
 
 #include "common/engine/engine_proto.h"
@@ -114,9 +115,20 @@ std::shared_ptr<const Problem> TaskExecutor::LocalizeProblem(const proto::Task& 
 
 std::shared_ptr<const Problem> TaskExecutor::SlamProblem(const proto::Task& task) {
   const proto::ProblemSpec& spec = task.problem();
-  // One global search's tasks (every island, every epoch) carry the same spec.
+  // One global search's tasks (every island, every epoch) carry the same spec, and a job runs one
+  // search at a time: its next search's problem replaces the last, dropped before the new one is
+  // built so that their base maps, each as large as the job's map, are never held together.
   std::string key = spec.SerializeAsString();
-  if (auto hit = Lookup(problems_, key)) return hit;
+  const auto held =
+      std::find_if(slam_problems_.begin(), slam_problems_.end(),
+                   [&](const SlamProblemHeld& p) { return p.job_id == task.job_id(); });
+  if (held != slam_problems_.end()) {
+    if (held->key == key) {
+      slam_problems_.splice(slam_problems_.begin(), slam_problems_, held);
+      return held->problem;
+    }
+    slam_problems_.erase(held);
+  }
   const std::string log_key = spec.log().sha256() + (spec.slam().lenient() ? "/lenient" : "");
   auto log = Lookup(logs_, log_key);
   if (!log) {
@@ -129,7 +141,8 @@ std::shared_ptr<const Problem> TaskExecutor::SlamProblem(const proto::Task& task
   } catch (const Error& e) {
     throw Error("task " + task.task_id() + ": " + e.what());
   }
-  Remember(problems_, std::move(key), problem);
+  slam_problems_.push_front({task.job_id(), std::move(key), problem});
+  if (slam_problems_.size() > kInputsKept) slam_problems_.pop_back();
   return problem;
 }
 

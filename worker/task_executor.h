@@ -27,6 +27,9 @@ class TaskExecutor {
   // with an error that says why.
   proto::TaskResult Run(const proto::Task& task);
 
+  // The problems built for tasks and kept for the tasks that repeat them.
+  std::size_t problems_held() const { return problems_.size() + slam_problems_.size(); }
+
  private:
   // Built once for the many tasks of one step (a scan's search, a global search): the task's
   // problem, which owns whatever it refers to.
@@ -39,6 +42,13 @@ class TaskExecutor {
   std::list<std::pair<std::string, std::shared_ptr<const LocalizeInputs>>> inputs_;
   std::list<std::pair<std::string, std::shared_ptr<const Dataset>>> logs_;
   std::list<std::pair<std::string, std::shared_ptr<const Problem>>> problems_;
+  // A SLAM job's one problem, its current global search's, by job id (most recently used first).
+  struct SlamProblemHeld {
+    std::string job_id;
+    std::string key;
+    std::shared_ptr<const Problem> problem;
+  };
+  std::list<SlamProblemHeld> slam_problems_;
 };
 
 }  // namespace evoslam

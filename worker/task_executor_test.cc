@@ -143,5 +143,29 @@ TEST_F(SlamTaskTest, ATaskThatDoesNotFitItsLogComesBackAsAnError) {
   }
 }
 
+// Each global search's problem holds a base map as large as the job's map: a worker that kept
+// the searches a job has finished would hold one such map per search.
+TEST_F(SlamTaskTest, AWorkerHoldsOneGlobalSearchOfAJobAtATime) {
+  TaskExecutor executor(files_);
+  const Island island = FreshIsland(slam_.rss().global());
+  const auto task = [&](const std::string& job, std::size_t first) {
+    proto::Task t = EvolveTask(Task(first), island, 1);
+    t.set_job_id(job);
+    return t;
+  };
+  for (const std::size_t first : {20, 30, 40}) {
+    const proto::TaskResult r = executor.Run(task("job-1", first));
+    ASSERT_TRUE(r.has_island()) << r.error().message();
+    EXPECT_EQ(executor.problems_held(), 1u) << "after the search from scan " << first;
+  }
+  ASSERT_TRUE(executor.Run(task("job-2", 20)).has_island());
+  EXPECT_EQ(executor.problems_held(), 2u) << "another job's search is held beside it";
+  // The last search's problem is let go before the next one is built, even one that fails.
+  proto::Task broken = task("job-1", 50);
+  broken.mutable_problem()->mutable_global_search()->set_first(60);
+  ASSERT_TRUE(executor.Run(broken).has_error());
+  EXPECT_EQ(executor.problems_held(), 1u);
+}
+
 }  // namespace
 }  // namespace evoslam
