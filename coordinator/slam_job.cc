@@ -1,5 +1,6 @@
 #include "coordinator/slam_job.h"
 
+#include <memory>
 #include <optional>
 
 #include "common/report/slam_outputs.h"
@@ -21,7 +22,10 @@ std::vector<proto::ResultFile> RunSlamJob(const JobContext& context) {
   const proto::ProblemSpec job = SlamProblemOf(spec);
   const proto::SlamParams& params = job.slam();
   const SlamMethod& method = FindSlamMethod(params.method());
-  const Dataset dataset = LoadJobLog(*context.files, spec.log(), params.lenient());
+  // Shared with the workers' tasks when they run in this process.
+  const std::shared_ptr<const Dataset> log =
+      LoadSharedJobLog(*context.files, spec.log(), params.lenient());
+  const Dataset& dataset = *log;
   // Read before the search, so that a bad file fails the job at once, not after all its work.
   const std::optional<NamedRelations> relations =
       LoadJobRelations(*context.files, spec.relations(), dataset);

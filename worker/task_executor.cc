@@ -132,7 +132,7 @@ std::shared_ptr<const Problem> TaskExecutor::SlamProblem(const proto::Task& task
   const std::string log_key = spec.log().sha256() + (spec.slam().lenient() ? "/lenient" : "");
   auto log = Lookup(logs_, log_key);
   if (!log) {
-    log = std::make_shared<const Dataset>(LoadJobLog(*files_, spec.log(), spec.slam().lenient()));
+    log = LoadSharedJobLog(*files_, spec.log(), spec.slam().lenient());
     Remember(logs_, log_key, log);
   }
   std::shared_ptr<const Problem> problem;

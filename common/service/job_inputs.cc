@@ -2,6 +2,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include <map>
+#include <memory>
+#include <mutex>
 #include <string>
 
 #include "common/eval/trajectory_errors.h"
@@ -29,6 +32,34 @@ Dataset LoadJobLog(const DatasetFiles& files, const proto::DatasetRef& log, bool
                  stats.first_skip_reason);
   }
   dataset.source = log.name();
+  return dataset;
+}
+
+std::shared_ptr<const Dataset> LoadSharedJobLog(const DatasetFiles& files,
+                                                const proto::DatasetRef& log, bool lenient) {
+  // Each log's slot has its own lock, so that a second load waits for the first one's parse
+  // while loads of other logs go on.
+  struct Slot {
+    std::mutex mutex;
+    std::weak_ptr<const Dataset> dataset;
+  };
+  static std::mutex mutex;
+  static std::map<std::string, std::shared_ptr<Slot>> slots;
+  const std::string key = log.sha256() + "/" + log.name() + (lenient ? "/lenient" : "");
+  std::shared_ptr<Slot> slot;
+  {
+    const std::lock_guard lock(mutex);
+    std::erase_if(slots, [](const auto& entry) {
+      return entry.second.use_count() == 1 && entry.second->dataset.expired();
+    });
+    std::shared_ptr<Slot>& found = slots[key];
+    if (!found) found = std::make_shared<Slot>();
+    slot = found;
+  }
+  const std::lock_guard lock(slot->mutex);
+  if (std::shared_ptr<const Dataset> held = slot->dataset.lock()) return held;
+  auto dataset = std::make_shared<const Dataset>(LoadJobLog(files, log, lenient));
+  slot->dataset = dataset;
   return dataset;
 }
 

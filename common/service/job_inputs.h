@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <initializer_list>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -47,6 +48,12 @@ auto NamedInput(std::initializer_list<CachedInput> inputs, Read read) {
 // Its source is the name it was uploaded under. Throws Error (InputError for a bad line) naming
 // the log that way.
 Dataset LoadJobLog(const DatasetFiles& files, const proto::DatasetRef& log, bool lenient);
+
+// LoadJobLog's Dataset, parsed once per process: while anyone holds it, a load of the same log
+// (the same bytes under the same name, as lenient) returns it instead of parsing another copy.
+// A coordinator and its workers in one process (the command's embedded service) share it so.
+std::shared_ptr<const Dataset> LoadSharedJobLog(const DatasetFiles& files,
+                                                const proto::DatasetRef& log, bool lenient);
 
 // The relations a job's trajectory is scored against; nullopt when the job names none. Throws
 // InputError naming the relations when none of them joins two of `log`'s scans (another log's

@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <string>
 
 #include "common/localization/localize_params.h"
@@ -118,6 +119,33 @@ TEST(LoadLocalizeInputsTest, AMapWithoutWallsIsRefused) {
   const InputError grid = LocalizeInputsError(files, yaml, pgm);
   EXPECT_EQ(grid.source(), "free.yaml");
   EXPECT_THAT(grid.message(), HasSubstr("no occupied cell"));
+}
+
+TEST(LoadSharedJobLogTest, ALogIsParsedOnceWhileItIsHeld) {
+  TempDir dir;
+  // A coordinator's cache and a worker's, holding the same bytes.
+  DatasetFiles coordinator(dir / "coordinator"), worker(dir / "worker");
+  const std::string clf =
+      "FLASER 3 1.0 2.0 3.0 0 0 0 0 0 0 1.5 nohost 1.5\n"
+      "FLASER 3 1.0 2.0 3.0 0.1 0 0 0.1 0 0 1.6 nohost 1.6\n";
+  const proto::DatasetRef ref = Keep(coordinator, "run.clf", clf);
+  Keep(worker, "run.clf", clf);
+  std::shared_ptr<const Dataset> first = LoadSharedJobLog(coordinator, ref, false);
+  std::shared_ptr<const Dataset> second = LoadSharedJobLog(worker, ref, false);
+  EXPECT_EQ(first.get(), second.get());
+  EXPECT_EQ(first->source, "run.clf");
+  EXPECT_EQ(first->scans.size(), 2u);
+  EXPECT_NE(LoadSharedJobLog(worker, ref, true).get(), first.get()) << "a lenient load differs";
+  proto::DatasetRef renamed = ref;
+  renamed.set_name("other.clf");
+  Keep(worker, "other.clf", clf);
+  EXPECT_EQ(LoadSharedJobLog(worker, renamed, false)->source, "other.clf");
+  // Nothing keeps a log that nobody holds.
+  const std::weak_ptr<const Dataset> held = first;
+  first.reset();
+  EXPECT_FALSE(held.expired());
+  second.reset();
+  EXPECT_TRUE(held.expired());
 }
 
 }  // namespace
