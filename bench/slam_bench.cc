@@ -156,18 +156,28 @@ void BM_LocalSearchIntelEdgeFree(benchmark::State& state) {
 BENCHMARK(BM_LocalSearchIntelEdgeFree)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 // The whole of 002's algorithm over the first range(0) scans of the Intel log (0: all 13,631),
-// on OMP_NUM_THREADS threads. Its speed against the log's own pace is the "x real time" counter.
+// on OMP_NUM_THREADS threads. Its speed against the log's own pace is the "x real time" counter;
+// its map's cells and the memory the map keeps for them, "map_cells" and "map_bytes".
 void BM_RssSlamIntel(benchmark::State& state) {
   const Dataset* log = IntelOrSkip(state);
   if (!log) return;
   proto::SlamParams params;
   params.set_max_scans(static_cast<std::uint32_t>(state.range(0)));
   const std::size_t scans = ScansToMap(*log, params);
-  for (auto _ : state) benchmark::DoNotOptimize(RunRssSlam(*log, params));
+  std::optional<RssSlamResult> result;
+  for (auto _ : state) {
+    result.reset();
+    result = RunRssSlam(*log, params);
+  }
   const double recorded = log->scans[scans - 1].timestamp - log->scans.front().timestamp;
   state.counters["scans"] = static_cast<double>(scans);
   state.counters["x_real_time"] = benchmark::Counter(
       recorded * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["map_cells"] =
+      static_cast<double>(result->map.width()) * static_cast<double>(result->map.height());
+  state.counters["map_bytes"] =
+      benchmark::Counter(static_cast<double>(result->map.bytes()), benchmark::Counter::kDefaults,
+                         benchmark::Counter::kIs1024);
 }
 BENCHMARK(BM_RssSlamIntel)
     ->Arg(3000)

@@ -6,6 +6,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/prctl.h>
+#include <sys/resource.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -99,7 +100,7 @@ class ChildProcess {
   bool Alive() {
     if (status_) return false;
     int status = 0;
-    const pid_t r = ::waitpid(pid_, &status, WNOHANG);
+    const pid_t r = ::wait4(pid_, &status, WNOHANG, &usage_);
     if (r == pid_) status_ = status;
     return !status_;
   }
@@ -121,6 +122,13 @@ class ChildProcess {
     return WEXITSTATUS(*status_);
   }
 
+  // Its peak resident memory in KiB (getrusage's ru_maxrss, which /usr/bin/time -v reports as
+  // the maximum resident set size) once it has ended; nullopt while it runs.
+  std::optional<long> max_rss_kib() {
+    if (Alive()) return std::nullopt;
+    return usage_.ru_maxrss;
+  }
+
   // Everything it wrote so far.
   std::string Log() const {
     std::ifstream in(log_, std::ios::binary);
@@ -140,6 +148,7 @@ class ChildProcess {
   std::filesystem::path log_;
   pid_t pid_ = -1;
   std::optional<int> status_;
+  rusage usage_{};
 };
 
 }  // namespace evoslam::testing
