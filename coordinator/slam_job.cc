@@ -1,11 +1,15 @@
 #include "coordinator/slam_job.h"
 
+#include <spdlog/spdlog.h>
+
 #include <memory>
 #include <optional>
 
 #include "common/report/slam_outputs.h"
 #include "common/service/job_inputs.h"
+#include "common/slam/memory_need.h"
 #include "common/slam/methods/slam_methods.h"
+#include "common/util/available_memory.h"
 
 namespace evoslam {
 
@@ -29,6 +33,12 @@ std::vector<proto::ResultFile> RunSlamJob(const JobContext& context) {
   // Read before the search, so that a bad file fails the job at once, not after all its work.
   const std::optional<NamedRelations> relations =
       LoadJobRelations(*context.files, spec.relations(), dataset);
+
+  // Before anything is built: a run that cannot fit is refused rather than killed midway.
+  if (const auto warning =
+          CheckMemoryNeed(method.PeakMemory(dataset, params), AvailableMemoryBytes())) {
+    spdlog::warn("{}", *warning);
+  }
 
   CheckpointThrottle throttle(context);
   SlamHooks hooks;

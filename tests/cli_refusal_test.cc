@@ -92,6 +92,24 @@ TEST_F(CliRefusalTest, ASimulatedDriveWhoseMapCannotBeBuiltLeavesNothingBehind) 
   EXPECT_EQ(Entries(), 0u);
 }
 
+// 3 mm cells on two scans' reach: a search map of 144 M cells, about 1.2 GB. Under a 1.5 GB
+// address space (of which the process maps half before the run) it cannot fit, and is refused
+// before it starts, saying how much it needs and for what.
+TEST_F(CliRefusalTest, ARunThatCannotFitInMemoryIsRefusedBeforeItStarts) {
+#ifdef EVOSLAM_SANITIZED
+  GTEST_SKIP() << "AddressSanitizer maps terabytes of shadow memory: no address-space limit holds";
+#endif
+  const auto r = testing::RunCommand("ulimit -v 1500000 && " + std::string(EVOSLAM_CLI) +
+                                     " slam --world office-cluster --max-scans 2 --resolution "
+                                     "0.003 --out " +
+                                     Path("slam"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("needs about 1.2 GB of memory"));
+  EXPECT_THAT(r.output, HasSubstr("12045 x 12001 cells of 0.003 m (--resolution)"));
+  EXPECT_THAT(r.output, HasSubstr("available"));
+  EXPECT_EQ(Entries(), 0u);
+}
+
 TEST_F(CliRefusalTest, StepsTooFineForAnyMachineAreRefusedNamingTheFlag) {
   const std::string sim = Path("sim");
   ASSERT_EQ(RunCli("simulate --world s-corridor --max-scans 5 --out " + sim).status, 0);

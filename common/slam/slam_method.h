@@ -17,6 +17,7 @@
 #include "common/sensor/dataset.h"
 #include "common/sensor/odometry_stalls.h"
 #include "common/slam/loop_detector.h"
+#include "common/slam/memory_need.h"
 #include "evoslam/service.pb.h"
 #include "evoslam/slam.pb.h"
 #include "evoslam/slam_params.pb.h"
@@ -77,6 +78,9 @@ class SlamMethod {
   virtual std::size_t Islands(const proto::SlamParams& params) const = 0;
   // Sets that number, as a job's spec may.
   virtual void SetIslands(proto::SlamParams& params, std::uint32_t islands) const = 0;
+  // The memory Run would take over `dataset`, estimated from its extent without running (to
+  // within a fifth or so): for refusing a run that cannot fit before it starts.
+  virtual MemoryNeed PeakMemory(const Dataset& dataset, const proto::SlamParams& params) const = 0;
   // Maps the first ScansToMap scans of `dataset`. The result is a function of the log and the
   // parameters (the seed included) alone, wherever its searches run.
   virtual SlamResult Run(const Dataset& dataset, const proto::SlamParams& params,

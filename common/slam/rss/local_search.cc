@@ -102,8 +102,7 @@ void CheckOdometrySteps(const Dataset& dataset) {
   }
 }
 
-HitCountGrid EmptyMapFor(const Dataset& dataset, const proto::RssMap& params,
-                         const LocalSearchParams& local) {
+SearchMapExtent SearchMapExtentFor(const Dataset& dataset, const proto::RssMap& params) {
   ValidateMapParams(params);
   if (dataset.scans.empty()) throw Error(dataset.source + ": the log has no laser scans");
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
@@ -115,18 +114,27 @@ HitCountGrid EmptyMapFor(const Dataset& dataset, const proto::RssMap& params,
     reach = std::max(reach, s.range_max);
   }
   const double pad = reach + params.margin_m();
-  const Eigen::Vector2d origin = lo.array() - pad;
-  const Eigen::Vector2d size = (hi - lo).array() + 2 * pad;
+  SearchMapExtent extent;
+  extent.origin = lo.array() - pad;
+  extent.size = (hi - lo).array() + 2 * pad;
   // Counted in doubles, so that a path of 1e300 m is refused rather than overflowing the count.
-  const Eigen::Vector2d cells = (size / params.cell_size_m()).array().ceil() + 1.0;
+  extent.cells = (extent.size / params.cell_size_m()).array().ceil() + 1.0;
+  return extent;
+}
+
+HitCountGrid EmptyMapFor(const Dataset& dataset, const proto::RssMap& params,
+                         const LocalSearchParams& local) {
+  const SearchMapExtent extent = SearchMapExtentFor(dataset, params);
+  const Eigen::Vector2d& cells = extent.cells;
   if (!(cells.x() * cells.y() <= static_cast<double>(HitCountGrid::kMaxCells))) {
     std::ostringstream os;
-    os << dataset.source << ": the odometry's path and the laser's reach span " << size.x() << " x "
-       << size.y() << " m, more than the " << HitCountGrid::kMaxCells << " cells of "
-       << params.cell_size_m() << " m the search's map holds; map at a coarser resolution";
+    os << dataset.source << ": the odometry's path and the laser's reach span " << extent.size.x()
+       << " x " << extent.size.y() << " m, more than the " << HitCountGrid::kMaxCells
+       << " cells of " << params.cell_size_m()
+       << " m the search's map holds; map at a coarser resolution";
     throw Error(os.str());
   }
-  HitCountGrid map(params.cell_size_m(), origin, static_cast<int>(cells.x()),
+  HitCountGrid map(params.cell_size_m(), extent.origin, static_cast<int>(cells.x()),
                    static_cast<int>(cells.y()));
   if (local.free_frontier()) map.TrackRays();
   return map;

@@ -47,10 +47,19 @@ void CheckOdometrySteps(const Dataset& dataset);
 
 void ValidateMapParams(const proto::RssMap& params);
 
-// The map a log's scans can reach: the odometry's path widened by the laser's range and
-// map.margin_m, in cells of map.cell_size_m; it records the cells its rays cross when the local
-// search frees the seen space's edge. Throws Error, naming the log and its extent, when that is
-// more than a HitCountGrid holds.
+// The area a log's scans can reach: the odometry's path widened by the laser's range and
+// map.margin_m, in cells of map.cell_size_m (counted in doubles, as there may be too many for a
+// grid). Throws Error for a log without scans or bad map parameters.
+struct SearchMapExtent {
+  Eigen::Vector2d origin;  // the lower left corner, m
+  Eigen::Vector2d size;    // m
+  Eigen::Vector2d cells;   // along x and y
+};
+SearchMapExtent SearchMapExtentFor(const Dataset& dataset, const proto::RssMap& map);
+
+// The map of that extent; it records the cells its rays cross when the local search frees the
+// seen space's edge. Throws Error, naming the log and its extent, when that is more than a
+// HitCountGrid holds.
 HitCountGrid EmptyMapFor(const Dataset& dataset, const proto::RssMap& map,
                          const LocalSearchParams& local);
 

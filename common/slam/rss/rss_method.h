@@ -13,6 +13,7 @@ class RssMethod final : public SlamMethod {
   void Validate(const proto::SlamParams& params) const override;
   std::size_t Islands(const proto::SlamParams& params) const override;
   void SetIslands(proto::SlamParams& params, std::uint32_t islands) const override;
+  MemoryNeed PeakMemory(const Dataset& dataset, const proto::SlamParams& params) const override;
   SlamResult Run(const Dataset& dataset, const proto::SlamParams& params,
                  const SlamHooks& hooks) const override;
   std::shared_ptr<const Problem> TaskProblem(const Dataset& dataset,
