@@ -169,7 +169,8 @@ std::string RssMethod::Summary(const proto::SlamReport& report) const {
   const proto::RssParams& p = report.params().rss();
   const proto::RssLocalSearch& l = p.local();
   s << "  local search: PSO of " << l.particles() << " particles x " << l.iterations()
-    << " iterations on " << l.fitness() << ", map cells " << p.map().cell_size_m() << " m, "
+    << " iterations on " << l.fitness() << ", map cells "
+    << fmt::format("{}", p.map().cell_size_m()) << " m, "
     << (l.odometry_tie_pull() > 0 ? "ties to odometry, " : "")
     << (l.second_swarm_above_rad() > 0 ? "a second swarm at odometry's heading, " : "")
     << (l.odometry_below_information() > 0 ? "odometry where the scan fixes nothing, " : "")

@@ -38,5 +38,12 @@ TEST(RssPeakMemoryTest, GrowsWithTheSearchMapsCells) {
   EXPECT_GT(rss.PeakMemory(log, WithCellSize(1e-6)).bytes, 1'000'000'000'000u);
 }
 
+// The summary gives the cell size as set, however fine.
+TEST(RssSummaryTest, NamesAFineCellSizeInFull) {
+  proto::SlamReport report;
+  *report.mutable_params() = WithCellSize(0.005);
+  EXPECT_THAT(RssMethod().Summary(report), ::testing::HasSubstr("map cells 0.005 m,"));
+}
+
 }  // namespace
 }  // namespace evoslam
