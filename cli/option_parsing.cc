@@ -109,9 +109,8 @@ CLI::Option* AddLogOption(CLI::App* cmd, const std::string& positional, std::str
           [&log, spelling](const std::vector<std::string>& given) {
             for (const std::string& other : given) {
               if (other != given.front()) {
-                throw CLI::ValidationError(spelling, "two different logs, '" + given.front() +
-                                                         "' and '" + other +
-                                                         "'; give the log once");
+                throw CLI::ValidationError(spelling, "two different files, '" + given.front() +
+                                                         "' and '" + other + "'; give one");
               }
             }
             log = given.front();
@@ -134,7 +133,8 @@ void AddDeprecatedName(CLI::App* cmd, const std::string& old_name, CLI::Option* 
            try {
              option->run_callback();
            } catch (const CLI::ParseError& e) {
-             // Named as typed: the warning that would name the new spelling is not shown yet.
+             // The error names the flag as typed: the warning that names the new one comes only
+             // after parsing.
              throw CLI::ValidationError(old_name + " (deprecated; use " + name + ")", e.what());
            }
          },

@@ -23,7 +23,7 @@ CLI::Validator NonNegativeNumber();
 void CheckOutputFolder(const std::string& flag, const std::string& folder);
 
 // Adds the input log to `cmd` as one option with two spellings: the positional `positional` and
-// --log; `log` receives it. Both may be given if they name the same file; two different ones are
+// --log; `log` receives it. Both may be given if they name the same file; two different files are
 // refused as a command-line error that names both spellings.
 CLI::Option* AddLogOption(CLI::App* cmd, const std::string& positional, std::string& log,
                           const std::string& help);

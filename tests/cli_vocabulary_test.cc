@@ -186,7 +186,7 @@ TEST_F(CliVocabularyTest, TwoDifferentLogsAreRefusedNamingBothSpellings) {
            {"localize --map " + map_ + " --out " + Path("o"), "log"}}) {
     const auto r = RunCli(command + " " + a + " --log " + b);
     EXPECT_EQ(r.status, 2) << command << ": " << r.output;
-    EXPECT_THAT(r.output, HasSubstr(positional + " or --log: two different logs")) << command;
+    EXPECT_THAT(r.output, HasSubstr(positional + " or --log: two different files")) << command;
     EXPECT_THAT(r.output, HasSubstr("'" + a + "'")) << command;
     EXPECT_THAT(r.output, HasSubstr("'" + b + "'")) << command;
   }
