@@ -4,6 +4,7 @@
 #include <string>
 
 #include "cli/commands.h"
+#include "cli/option_parsing.h"
 #include "common/eval/trajectory_errors.h"
 #include "common/io/carmen_reader.h"
 #include "common/io/relations.h"
@@ -44,17 +45,18 @@ void AddEvalCommand(CLI::App& app) {
     std::string trajectory, relations, truth;
   };
   auto args = std::make_shared<Args>();
-  cmd->add_option("trajectory", args->trajectory,
-                  "trajectory.txt / .tum, or a CARMEN log (its scans' poses)")
+  AddLogOption(cmd, "trajectory", args->trajectory,
+               "trajectory.txt / .tum, or a CARMEN log whose scans' poses are evaluated")
       ->required();
-  auto* rel = cmd->add_option("--relations", args->relations, "relations file");
-  auto* truth = cmd->add_option("--truth", args->truth,
-                                "ground truth: trajectory file, or a log with TRUEPOS lines");
-  rel->excludes(truth);
+  CLI::App* reference =
+      cmd->add_option_group("reference", "What the trajectory is measured against");
+  reference->add_option("--relations", args->relations, "relations file")->type_name("FILE");
+  reference
+      ->add_option("--truth", args->truth,
+                   "ground truth: trajectory file, or a log with TRUEPOS lines")
+      ->type_name("FILE");
+  reference->require_option(1);
   cmd->callback([args] {
-    if (args->relations.empty() && args->truth.empty()) {
-      throw CLI::ValidationError("eval needs --relations FILE or --truth FILE_OR_LOG");
-    }
     const auto trajectory = LoadTrajectory(args->trajectory, false);
     std::vector<Relation> relations;
     if (!args->relations.empty()) {

@@ -11,6 +11,7 @@
 #include <zmq.hpp>
 
 #include "cli/commands.h"
+#include "cli/option_parsing.h"
 #include "common/util/error.h"
 #include "common/util/nearest_name.h"
 #include "common/util/program_options.h"
@@ -67,6 +68,7 @@ int main(int argc, char** argv) {
   app.parse_complete_callback([&] {
     evoslam::LogToStderr("evoslam");
     spdlog::set_level(spdlog::level::from_str(level));
+    evoslam::cli::WarnDeprecatedNames();
   });
 
   evoslam::cli::AddInfoCommand(app);

@@ -2,6 +2,7 @@
 #include <string>
 
 #include "cli/commands.h"
+#include "cli/option_parsing.h"
 #include "common/io/carmen_reader.h"
 #include "common/sensor/dataset_summary.h"
 
@@ -14,8 +15,8 @@ void AddInfoCommand(CLI::App& app) {
     bool lenient = false;
   };
   auto args = std::make_shared<Args>();
-  cmd->add_option("log", args->log, "CARMEN log")->required();
-  cmd->add_flag("--lenient", args->lenient, "Skip malformed lines and report how many");
+  AddLogOption(cmd, "log", args->log, "CARMEN log to describe")->required();
+  cmd->add_flag("--lenient", args->lenient, "skip malformed log lines and report how many");
   cmd->callback([args] {
     CarmenReadStats stats;
     const Dataset dataset = ReadCarmen(args->log, {.lenient = args->lenient}, &stats);

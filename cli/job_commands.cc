@@ -81,7 +81,7 @@ void AddJobCommands(CLI::App& app) {
     }
   });
   auto* result = JobCommand(app, "result", "Write a finished job's files", a, true);
-  result->add_option("--out", a->out, "output directory")->required();
+  result->add_option("--out", a->out, "output folder")->type_name("DIR")->required();
   result->callback([a] {
     Connection c(a->service);
     const auto files = c.client.Result(a->job_id);

@@ -24,7 +24,7 @@ void AddJobRunOptions(CLI::App* cmd, JobRunArgs& a) {
 
 void AddJobOutputOptions(CLI::App* cmd, JobRunArgs& a) {
   cmd->add_flag("--detach", a.detach, "with --coordinator: print the job id and return at once");
-  cmd->add_option("--out", a.out, "output directory");
+  cmd->add_option("--out", a.out, "output folder; required unless --detach")->type_name("DIR");
 }
 
 void CheckJobRunArgs(const JobRunArgs& a) {

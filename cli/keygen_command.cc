@@ -30,7 +30,9 @@ void AddKeygenCommand(CLI::App& app) {
                                  "Make a CURVE key pair for the coordinator, a worker or a client");
   auto a = std::make_shared<KeygenArgs>();
   cmd->add_option("--name", a->name, "writes NAME.pub and NAME.key")->required();
-  cmd->add_option("--out", a->out, "folder for the key files")->capture_default_str();
+  cmd->add_option("--out", a->out, "folder for the key files")
+      ->type_name("DIR")
+      ->capture_default_str();
   cmd->add_flag("--force", a->force, "replace existing key files");
   cmd->callback([a] { Run(*a); });
 }

@@ -14,12 +14,20 @@
 namespace evoslam::cli {
 
 void AddLocalizeJobOptions(CLI::App* cmd, LocalizeArgs& a, bool with_islands) {
-  cmd->add_option("--map", a.map, "known map: LineMap text file or map_server .yaml");
-  cmd->add_option("--map-from-log", a.map_from_log,
-                  "build an occupancy grid from this log's reference poses instead");
-  cmd->add_option("--grid-resolution", a.grid_resolution, "cell size for --map-from-log, m")
-      ->check(PositiveNumber());
-  cmd->add_option("--log", a.log, "CARMEN log to localize")->required();
+  CLI::App* map = cmd->add_option_group("map", "The known map");
+  map->add_option("--map", a.map, "known map: LineMap text file or map_server .yaml")
+      ->type_name("FILE");
+  map->add_option("--map-from-log", a.map_from_log,
+                  "build an occupancy grid from this log's reference poses instead")
+      ->type_name("FILE");
+  map->require_option(1);
+  AddDeprecatedName(
+      cmd, "--grid-resolution",
+      cmd->add_option("--resolution", a.resolution,
+                      "cell size of the --map-from-log grid, metres per cell (map.yaml's "
+                      "resolution)")
+          ->check(PositiveNumber()));
+  AddLogOption(cmd, "log", a.log, "CARMEN log to localize")->required();
   cmd->add_option("--start", a.start,
                   "start pose x,y,theta (m, m, rad); default: first scan's pose");
   cmd->add_flag("--use-odometry", a.use_odometry, "centre the window on the odometry prediction");
@@ -46,9 +54,13 @@ void AddLocalizeJobOptions(CLI::App* cmd, LocalizeArgs& a, bool with_islands) {
                   "docs/engine.md); options given as well override them")
       ->check(CLI::IsMember(PresetNames()));
   cmd->add_option("--strategy", a.strategy, "DE strategy, e.g. rand1exp, best1bin");
-  cmd->add_option("--pop", a.pop, "population, or particles (PSO); per island with islands")
-      ->check(CLI::Range(2, 100000));
-  cmd->add_option("--gen", a.gen, "generations")->check(CLI::Range(1, 1000000));
+  AddDeprecatedName(cmd, "--pop",
+                    cmd->add_option("--population", a.population,
+                                    "population, or particles (PSO); per island with islands")
+                        ->check(CLI::Range(2, 100000)));
+  AddDeprecatedName(cmd, "--gen",
+                    cmd->add_option("--generations", a.generations, "generations")
+                        ->check(CLI::Range(1, 1000000)));
   cmd->add_option("--F", a.f, "DE differential weight")->check(CLI::Range(0.0, 2.0));
   cmd->add_option("--CR", a.cr, "DE crossover rate")->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--w", a.pso.inertia, "PSO inertia weight")->check(CLI::Range(0.0, 1.0));
@@ -98,8 +110,9 @@ void AddLocalizeJobOptions(CLI::App* cmd, LocalizeArgs& a, bool with_islands) {
       ->check(PositiveNumber());
   cmd->add_option("--max-range", a.max_range, "simulation range limit, m (default: the scan's)")
       ->check(NonNegativeNumber());
-  cmd->add_option("--max-scans", a.max_scans, "localize only the first N scans");
-  cmd->add_option("--relations", a.relations, "relations file for the relative error");
+  cmd->add_option("--max-scans", a.max_scans, "localize only the first N scans, 0: all");
+  cmd->add_option("--relations", a.relations, "relations file for the relative error")
+      ->type_name("FILE");
   cmd->add_option("--seed", a.seed, "random seed");
   cmd->add_flag("--lenient", a.lenient, "skip malformed log lines and report how many");
 }
@@ -111,9 +124,6 @@ void NoteGivenOptions(const CLI::App* cmd, LocalizeArgs& a) {
 }
 
 LocalizeOptions OptionsFrom(const LocalizeArgs& a) try {
-  if (a.map.empty() == a.map_from_log.empty()) {
-    throw Error("localize needs exactly one of --map MAP and --map-from-log LOG");
-  }
   LocalizeOptions options;
   EstimatorParams& e = options.estimator;
   e.fitness.kind = ParseFitnessKind(a.fitness);
@@ -134,15 +144,16 @@ LocalizeOptions OptionsFrom(const LocalizeArgs& a) try {
     e.algorithm.kind = ParseAlgorithmKind(a.island_algorithm);
   AlgorithmSpec& s = e.algorithm;
   if (use("--strategy")) s.de.strategy = ParseDeStrategy(a.strategy);
-  if (use("--pop")) {
-    s.de.population = s.jde.population = s.pso.particles = s.ga.population = a.pop;
+  if (use("--population")) {
+    const std::size_t n = a.population;
+    s.de.population = s.jde.population = s.pso.particles = s.ga.population = n;
     // The multi-objective EAs keep their papers' proportions: lambda = 7 mu (002), and four
     // recombinations to one mutation.
-    s.mu_plus_lambda.mu = a.pop;
-    s.mu_plus_lambda.lambda = 7 * a.pop;
-    s.immune.population = a.pop;
-    s.immune.recombinations = a.pop - a.pop / 5;
-    s.immune.mutations = a.pop / 5;
+    s.mu_plus_lambda.mu = n;
+    s.mu_plus_lambda.lambda = 7 * n;
+    s.immune.population = n;
+    s.immune.recombinations = n - n / 5;
+    s.immune.mutations = n / 5;
   }
   if (use("--crossover")) s.ga.crossover = ParseGaCrossover(a.crossover);
   if (use("--ga-grid")) s.ga.grid_step = a.ga_grid;
@@ -154,7 +165,7 @@ LocalizeOptions OptionsFrom(const LocalizeArgs& a) try {
   if (use("--c2")) s.pso.c2 = a.pso.c2;
   if (use("--vmax")) s.pso.vmax_fraction = a.pso.vmax_fraction;
   if (use("--pso-neighbourhood")) s.pso.neighbourhood = ParsePsoNeighbourhood(a.pso_neighbourhood);
-  if (use("--gen")) e.generations = a.gen;
+  if (use("--generations")) e.generations = a.generations;
   e.islands = a.islands;
   e.migration.interval = a.migration_interval;
   e.migration.migrants = a.migrants;
@@ -202,7 +213,7 @@ proto::JobSpec JobFrom(const LocalizeArgs& a, const LocalizeOptions& options,
   p.set_log(a.log);
   p.set_preset(a.preset);
   p.set_map_from_log(!a.map_from_log.empty());
-  p.set_grid_resolution_m(a.grid_resolution);
+  p.set_grid_resolution_m(a.resolution);
   p.set_lenient(a.lenient);
   *spec.mutable_log() = client.Upload(a.log);
   if (a.map.empty()) {

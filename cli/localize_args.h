@@ -21,7 +21,7 @@ struct LocalizeArgs {
   std::string fitness = "f3", estimator = "2d", optimizer = "de", strategy = "rand1exp";
   double f2_base = FitnessParams{}.f2_base, f2_slope = FitnessParams{}.f2_slope;
   double f3_cap = FitnessParams{}.f3_cap;
-  std::size_t pop = 25, gen = 25, max_scans = 0;
+  std::size_t population = 25, generations = 25, max_scans = 0;
   double f = 0.6, cr = 0.9, window = 0.6, heading_window = 30.0, heading_step = 0.5;
   PsoParams pso;
   std::string pso_neighbourhood = "global";
@@ -31,13 +31,14 @@ struct LocalizeArgs {
   std::string island_algorithm = "de", topology = "ring", migration_policy = "best-replace-worst";
   std::string preset;
   std::set<std::string> given;  // options set on the command line, which override a preset
-  double exhaustive_step = 0.01, max_range = 0.0, grid_resolution = 0.05;
+  double exhaustive_step = 0.01, max_range = 0.0, resolution = 0.05;
   std::uint64_t seed = 1;
   bool use_odometry = false, lenient = false;
   JobRunArgs run;
 };
 
-// Adds the job's options to `cmd` (--islands too unless the command sets it itself).
+// Adds the job's options to `cmd` (--islands too unless the command sets it itself), with the
+// deprecated spellings of their names.
 void AddLocalizeJobOptions(CLI::App* cmd, LocalizeArgs& a, bool with_islands);
 // Records which options were given, so they override a preset.
 void NoteGivenOptions(const CLI::App* cmd, LocalizeArgs& a);

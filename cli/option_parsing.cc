@@ -1,5 +1,6 @@
 #include "cli/option_parsing.h"
 
+#include <spdlog/spdlog.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -52,6 +53,12 @@ CLI::Validator NumberValidator(bool (*ok)(double), const std::string& what,
       name);
 }
 
+// The warnings of the deprecated names used, which WarnDeprecatedNames logs.
+std::vector<std::string>& PendingDeprecationWarnings() {
+  static std::vector<std::string> warnings;
+  return warnings;
+}
+
 }  // namespace
 
 Pose2 ParsePose(const std::string& text, const std::string& flag) {
@@ -91,6 +98,53 @@ void CheckOutputFolder(const std::string& flag, const std::string& folder) {
         flag, "cannot write into '" + path.string() + "'" +
                   (path == target ? std::string() : " to create '" + folder + "' there"));
   }
+}
+
+CLI::Option* AddLogOption(CLI::App* cmd, const std::string& positional, std::string& log,
+                          const std::string& help) {
+  const std::string spelling = positional + " or --log";
+  return cmd
+      ->add_option_function<std::vector<std::string>>(
+          positional + ",--log",
+          [&log, spelling](const std::vector<std::string>& given) {
+            for (const std::string& other : given) {
+              if (other != given.front()) {
+                throw CLI::ValidationError(spelling, "two different files, '" + given.front() +
+                                                         "' and '" + other + "'; give one");
+              }
+            }
+            log = given.front();
+          },
+          help + "; as the positional " + positional + " or --log")
+      ->type_name("FILE")
+      // One value each time it is given; both spellings' values reach the check above.
+      ->expected(1)
+      ->allow_extra_args(true)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+}
+
+void AddDeprecatedName(CLI::App* cmd, const std::string& old_name, CLI::Option* option) {
+  const std::string name = option->get_name();
+  cmd->add_option_function<std::string>(
+         old_name,
+         [old_name, name, option](const std::string& value) {
+           PendingDeprecationWarnings().push_back(old_name + " is deprecated; use " + name);
+           option->add_result(value);
+           try {
+             option->run_callback();
+           } catch (const CLI::ParseError& e) {
+             // The error names the flag as typed: the warning that names the new one comes only
+             // after parsing.
+             throw CLI::ValidationError(old_name + " (deprecated; use " + name + ")", e.what());
+           }
+         },
+         "deprecated: " + name)
+      ->group("");
+}
+
+void WarnDeprecatedNames() {
+  for (const std::string& warning : PendingDeprecationWarnings()) spdlog::warn("{}", warning);
+  PendingDeprecationWarnings().clear();
 }
 
 }  // namespace evoslam::cli

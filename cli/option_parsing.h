@@ -22,6 +22,21 @@ CLI::Validator NonNegativeNumber();
 // that a refused command leaves no trace.
 void CheckOutputFolder(const std::string& flag, const std::string& folder);
 
+// Adds the input log to `cmd` as one option with two spellings: the positional `positional` and
+// --log; `log` receives it. Both may be given if they name the same file; two different files are
+// refused as a command-line error that names both spellings.
+CLI::Option* AddLogOption(CLI::App* cmd, const std::string& positional, std::string& log,
+                          const std::string& help);
+
+// Adds `old_name` to `cmd` as a deprecated spelling of `option` (which takes a value), hidden from
+// --help: its value goes to `option` as if given there, and the run warns that `old_name` is
+// deprecated (WarnDeprecatedNames).
+void AddDeprecatedName(CLI::App* cmd, const std::string& old_name, CLI::Option* option);
+
+// Logs a warning for each deprecated name the command line used. main calls it once logging is
+// set up, so that --log-level applies.
+void WarnDeprecatedNames();
+
 }  // namespace evoslam::cli
 
 #endif  // EVOSLAM_CLI_OPTION_PARSING_H_

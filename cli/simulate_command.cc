@@ -50,9 +50,11 @@ void AddSimulateCommand(CLI::App& app) {
                     ->check(CLI::IsMember(BuiltinWorldNames()));
   cmd->add_option("--world-file", a->world_file,
                   "any LineMap file as world (a route through its free space is chosen)")
+      ->type_name("FILE")
       ->excludes(world);
   cmd->add_option("--route", a->route_file,
-                  "route file, one waypoint \"x y\" (m) per line, to drive instead of the world's");
+                  "route file, one waypoint \"x y\" (m) per line, to drive instead of the world's")
+      ->type_name("FILE");
   cmd->add_option("--beams", o.laser.beams, "laser beams")->check(CLI::Range(2, 100000));
   cmd->add_option("--fov", o.laser.field_of_view_deg, "field of view, degrees")
       ->check(CLI::Range(1.0, 360.0));
@@ -77,7 +79,7 @@ void AddSimulateCommand(CLI::App& app) {
       ->check(NonNegativeNumber());
   cmd->add_option("--max-scans", o.max_scans, "stop after N scans (0: whole route)");
   cmd->add_option("--seed", o.seed, "random seed");
-  cmd->add_option("--out", a->out, "output directory")->required();
+  cmd->add_option("--out", a->out, "output folder")->type_name("DIR")->required();
   cmd->callback([a] { Run(*a); });
 }
 

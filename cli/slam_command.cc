@@ -91,9 +91,13 @@ void AddParamOption(CLI::App* cmd, proto::SlamParams& params, const SlamFlag& f)
         f.flag, [set, value = f.value](std::int64_t) { set(value); }, f.help);
     return;
   }
-  const std::string value = SlamParamText(CompleteSlamParams({}), f.param);
-  cmd->add_option_function<std::string>(f.flag, set, f.help + " (default " + value + ")")
-      ->type_name(TypeName(SlamParamField(f.param)));
+  // The default as --help shows every other option's: "=VALUE", a string without its quotes.
+  std::string value = SlamParamText(CompleteSlamParams({}), f.param);
+  if (value.size() >= 2 && value.front() == '"') value = value.substr(1, value.size() - 2);
+  CLI::Option* option = cmd->add_option_function<std::string>(f.flag, set, f.help)
+                            ->type_name(TypeName(SlamParamField(f.param)))
+                            ->default_str(value);
+  if (!f.deprecated.empty()) AddDeprecatedName(cmd, f.deprecated, option);
 }
 
 // The flags of the SLAM parameters users tune most: those of every run, then each method's.
@@ -112,7 +116,8 @@ void AddSlamParamOptions(CLI::App* cmd, SlamArgs& a) {
   cmd->add_option("--param", a.assigns,
                   "NAME=VALUE: any SLAM parameter by its dotted name (docs/configuration.md), the "
                   "method's prefix optional, e.g. local.particles=20; applied after the flags")
-      ->type_name("NAME=VALUE");
+      ->type_name("NAME=VALUE")
+      ->default_str("");
   cmd->add_option("--config", a.config,
                   "a text-format parameter file, as --print-params writes one; the flags and "
                   "--param apply on top of it")
@@ -205,14 +210,15 @@ void AddSlamCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "slam", "Build a map and the trajectory from a log (paper 002's reduced-search-space SLAM)");
   auto a = std::make_shared<SlamArgs>();
-  auto* log = cmd->add_option("--log", a->log, "CARMEN log to map");
+  auto* log = AddLogOption(cmd, "log", a->log, "CARMEN log to map");
   cmd->add_option("--world", a->world,
                   fmt::format("simulate a drive with drifting odometry through this built-in "
                               "world into --out and map it (default without --log: {})",
                               kDefaultWorld))
       ->check(CLI::IsMember(BuiltinWorldNames()))
       ->excludes(log);
-  cmd->add_option("--relations", a->relations, "relations file for the relative error");
+  cmd->add_option("--relations", a->relations, "relations file for the relative error")
+      ->type_name("FILE");
   AddSlamParamOptions(cmd, *a);
   AddJobRunOptions(cmd, a->run);
   AddJobOutputOptions(cmd, a->run);

@@ -15,6 +15,7 @@
 #include "cli/commands.h"
 #include "cli/job_client.h"
 #include "cli/localize_args.h"
+#include "cli/option_parsing.h"
 #include "cli/service_session.h"
 #include "common/engine/archipelago.h"
 #include "common/util/error.h"
@@ -25,9 +26,9 @@ namespace {
 
 struct TuneArgs {
   LocalizeArgs job;
-  std::string islands = "1,2,4,8";
+  std::string island_counts = "1,2,4,8";
   std::size_t seeds = 3;
-  std::size_t total_pop = 40;
+  std::size_t total_population = 40;
   std::optional<double> target;
 };
 
@@ -39,7 +40,7 @@ struct TimedRun {
 
 struct CountResult {
   std::size_t islands = 0;
-  std::size_t pop = 0;
+  std::size_t population = 0;  // per island
   std::vector<TimedRun> runs;
 };
 
@@ -56,12 +57,12 @@ std::vector<std::size_t> ParseCounts(const std::string& text) {
       used = 0;
     }
     if (used != item.size() || n < 1 || n > kMaxIslands) {
-      throw CLI::ValidationError("--islands: '" + item + "' is not an island count (1 to " +
+      throw CLI::ValidationError("--island-counts: '" + item + "' is not an island count (1 to " +
                                  std::to_string(kMaxIslands) + ")");
     }
     counts.push_back(n);
   }
-  if (counts.empty()) throw CLI::ValidationError("--islands needs at least one count");
+  if (counts.empty()) throw CLI::ValidationError("--island-counts needs at least one count");
   return counts;
 }
 
@@ -83,7 +84,7 @@ proto::LocalizeReport ReportOf(const std::vector<proto::ResultFile>& files) {
 }
 
 void RunTune(const TuneArgs& t) {
-  const std::vector<std::size_t> counts = ParseCounts(t.islands);
+  const std::vector<std::size_t> counts = ParseCounts(t.island_counts);
   std::vector<CountResult> results;
   for (const std::size_t n : counts) {
     LocalizeArgs a = t.job;
@@ -91,9 +92,9 @@ void RunTune(const TuneArgs& t) {
     a.given.insert("--optimizer");
     a.islands = n;
     // The same budget at every count: the total population is shared among the islands.
-    a.pop = std::max<std::size_t>(4, (t.total_pop + n / 2) / n);
-    a.given.insert("--pop");
-    CountResult r{n, a.pop, {}};
+    a.population = std::max<std::size_t>(4, (t.total_population + n / 2) / n);
+    a.given.insert("--population");
+    CountResult r{n, a.population, {}};
     ServiceSession session(a.run.service, ChooseEmbeddedLayout(n, a.run.workers, a.run.threads));
     for (std::size_t s = 0; s < t.seeds; ++s) {
       a.seed = t.job.seed + s;
@@ -105,8 +106,8 @@ void RunTune(const TuneArgs& t) {
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       r.runs.push_back({seconds, report.mean_fitness(), report.evaluations()});
-      spdlog::info("{} islands of {}, seed {}: {:.2f} s, mean fitness {:.6g}", n, a.pop, a.seed,
-                   seconds, report.mean_fitness());
+      spdlog::info("{} islands of {}, seed {}: {:.2f} s, mean fitness {:.6g}", n, a.population,
+                   a.seed, seconds, report.mean_fitness());
     }
     results.push_back(std::move(r));
   }
@@ -120,7 +121,7 @@ void RunTune(const TuneArgs& t) {
   }
   const double target = t.target.value_or(best + 0.02 * std::abs(best));
 
-  std::printf("islands  pop/island  evaluations  time s  mean fitness  time to target s\n");
+  std::printf("islands  population/island  evaluations  time s  mean fitness  time to target s\n");
   std::optional<std::size_t> pick;
   double pick_time = std::numeric_limits<double>::infinity();
   for (const CountResult& r : results) {
@@ -139,7 +140,7 @@ void RunTune(const TuneArgs& t) {
     } else {
       std::snprintf(ttt, sizeof ttt, "not reached (%zu/%zu)", reached.size(), r.runs.size());
     }
-    std::printf("%7zu  %10zu  %11llu  %6.2f  %12.6g  %s\n", r.islands, r.pop,
+    std::printf("%7zu  %17zu  %11llu  %6.2f  %12.6g  %s\n", r.islands, r.population,
                 static_cast<unsigned long long>(evaluations), Median(seconds), Median(fitness),
                 ttt);
     if (all && Median(reached) < pick_time) {
@@ -149,11 +150,13 @@ void RunTune(const TuneArgs& t) {
   }
   std::printf("medians over %zu seeds; target mean fitness %.6g\n", t.seeds, target);
   if (pick) {
-    std::printf("recommended for this host: --islands %zu (the fastest to reach the target)\n",
-                *pick);
+    std::printf(
+        "recommended for this host: --optimizer island --islands %zu (the fastest to reach the "
+        "target)\n",
+        *pick);
   } else {
     std::printf(
-        "no island count reached the target in every seed; raise --gen or loosen "
+        "no island count reached the target in every seed; raise --generations or loosen "
         "--target\n");
   }
 }
@@ -168,23 +171,28 @@ void AddTuneCommand(CLI::App& app) {
   auto t = std::make_shared<TuneArgs>();
   AddLocalizeJobOptions(cmd, t->job, false);
   AddJobRunOptions(cmd, t->job.run);
-  cmd->add_option("--islands", t->islands, "island counts to try, e.g. 1,2,4,8")
-      ->capture_default_str();
+  AddDeprecatedName(cmd, "--islands",
+                    cmd->add_option("--island-counts", t->island_counts,
+                                    "the island counts to try, comma-separated")
+                        ->capture_default_str());
   cmd->add_option("--seeds", t->seeds, "runs per island count, seeds --seed, --seed + 1, ...")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
-  cmd->add_option("--total-pop", t->total_pop,
-                  "population of all islands together, shared evenly (at least 4 each)")
-      ->capture_default_str()
-      ->check(CLI::Range(4, 1000000));
+  AddDeprecatedName(
+      cmd, "--total-pop",
+      cmd->add_option("--total-population", t->total_population,
+                      "population of all islands together, shared evenly (at least 4 each)")
+          ->capture_default_str()
+          ->check(CLI::Range(4, 1000000)));
   cmd->add_option("--target", t->target,
                   "mean fitness per scan that counts as reached (default: the best count's "
                   "median, plus 2 %)");
   cmd->callback([t, cmd] {
     NoteGivenOptions(cmd, t->job);
-    if (t->job.given.contains("--pop") || t->job.given.contains("--optimizer")) {
+    if (t->job.given.contains("--population") || t->job.given.contains("--optimizer")) {
       throw CLI::ValidationError(
-          "tune sets --optimizer island and the population per island itself; use --total-pop");
+          "tune sets --optimizer island and the population per island itself; use "
+          "--total-population");
     }
     RunTune(*t);
   });

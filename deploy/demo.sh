@@ -10,6 +10,6 @@ cd "$(dirname "$0")/.."
 ./build/cli/evoslam slam --out out/demo/slam
 ./build/cli/evoslam simulate --world s-corridor --noise-uniform 0.2 --seed 1 --out out/demo/sim
 ./build/cli/evoslam localize --map out/demo/sim/world.lines --log out/demo/sim/log.clf \
-  --fitness f3 --estimator 2d --optimizer de --strategy rand1exp --pop 25 --gen 25 \
+  --fitness f3 --estimator 2d --optimizer de --strategy rand1exp --population 25 --generations 25 \
   --window 0.6 --seed 1 --out out/demo/localize
 echo "demo: the SLAM map with its trajectory is out/demo/slam/map_trajectory.png"

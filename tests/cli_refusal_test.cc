@@ -54,9 +54,12 @@ TEST_F(CliRefusalTest, TheLogLevelMayFollowTheSubcommand) {
 TEST_F(CliRefusalTest, HelpShowsEveryDefault) {
   const auto r = RunCli("localize --help");
   ASSERT_EQ(r.status, 0) << r.output;
-  // Options with a value and a default, as --help lists them: "--pop UINT:... =25".
-  for (const auto& [option, value] : std::vector<std::pair<std::string, std::string>>{
-           {"--pop", "25"}, {"--gen", "25"}, {"--window", "0.6"}, {"--fitness", "f3"}}) {
+  // Options with a value and a default, as --help lists them: "--population UINT:... =25".
+  for (const auto& [option, value] :
+       std::vector<std::pair<std::string, std::string>>{{"--population", "25"},
+                                                        {"--generations", "25"},
+                                                        {"--window", "0.6"},
+                                                        {"--fitness", "f3"}}) {
     const std::size_t at = r.output.find("  " + option + " ");
     ASSERT_NE(at, std::string::npos) << option;
     const std::string line = r.output.substr(at, r.output.find('\n', at) - at);

@@ -123,7 +123,8 @@ TEST_F(CliTest, PresetsSetTheAlgorithmAndOptionsOverrideThem) {
   const std::string a = ReadAll(dir_ / "a" / "report.json");
   EXPECT_NE(a.find("\"particles\": 50"), std::string::npos) << a;
   EXPECT_NE(a.find("\"preset\": \"pso-003\""), std::string::npos) << a;
-  const Result overridden = RunCli(localize + " --preset pso-003 --pop 12 --out " + Path("b"));
+  const Result overridden =
+      RunCli(localize + " --preset pso-003 --population 12 --out " + Path("b"));
   ASSERT_EQ(overridden.status, 0) << overridden.output;
   const std::string b = ReadAll(dir_ / "b" / "report.json");
   EXPECT_NE(b.find("\"particles\": 12"), std::string::npos) << b;
@@ -222,9 +223,9 @@ TEST_F(CliTest, BadFlagsAreRefused) {
   EXPECT_EQ(start.status, 2);
   EXPECT_NE(start.output.find("--start"), std::string::npos) << start.output;
   EXPECT_EQ(RunCli(localize + " --map-from-log l2").status, 2);
-  EXPECT_EQ(RunCli(localize + " --optimizer de --pop 3").status, 2);
+  EXPECT_EQ(RunCli(localize + " --optimizer de --population 3").status, 2);
   EXPECT_EQ(RunCli(localize + " --preset de-999").status, 2);
-  const Result migrants = RunCli(localize + " --optimizer island --pop 10 --migrants 10");
+  const Result migrants = RunCli(localize + " --optimizer island --population 10 --migrants 10");
   EXPECT_EQ(migrants.status, 2);
   EXPECT_NE(migrants.output.find("migrants"), std::string::npos) << migrants.output;
   EXPECT_EQ(RunCli(localize + " --optimizer island --topology torus").status, 2);
@@ -279,7 +280,7 @@ TEST_F(CliTest, SlamRefusesBadFlags) {
   for (const auto& [flag, shown] : std::vector<std::pair<std::string, std::string>>{
            {"--method icp", "--method"},
            {"--local-fitness eval3", "eval3"},
-           {"--particles -3", "--particles"},
+           {"--local-population -3", "--local-population"},
            {"--resolution -0.05", "--resolution"},
            {"--loop-radius 0", "--loop-radius"},
            {"--generations 0", "--generations"},
@@ -318,7 +319,7 @@ TEST_F(CliTest, SlamFlagsSetTheirParameters) {
   EXPECT_NE(defaults.output.find("particles: 10\n"), std::string::npos) << defaults.output;
   EXPECT_EQ(defaults.output.find("log:"), std::string::npos) << defaults.output;
   const Result set = RunCli(
-      "slam --print-params --log run.clf --particles 12 --local-fitness eval2 --local-only "
+      "slam --print-params --log run.clf --local-population 12 --local-fitness eval2 --local-only "
       "--global-every 0 --partitions 4 --generations 7 --islands 3 --preset de-000 "
       "--max-stretch 90 --loop-radius 1.5 --min-match-score 0.7 --resolution 0.1 "
       "--local-iterations 20 --max-scans 50 --seed 9 --lenient "
@@ -359,7 +360,7 @@ TEST_F(CliTest, SlamConfigReadsBackWhatPrintParamsWrites) {
     config << printed.output;
   }
   const std::string drive = "slam --world s-corridor --max-scans 60 --generations 5";
-  const Result plain = RunCli(drive + " --seed 4 --particles 12 --out " + Path("plain"));
+  const Result plain = RunCli(drive + " --seed 4 --local-population 12 --out " + Path("plain"));
   ASSERT_EQ(plain.status, 0) << plain.output;
   const Result configured = RunCli(drive + " --config " + Path("p.txt") + " --out " + Path("cfg"));
   ASSERT_EQ(configured.status, 0) << configured.output;

@@ -342,9 +342,9 @@ class ServiceTest : public ::testing::Test {
                                      std::to_string(job.scans),
                                      "--optimizer",
                                      job.optimizer,
-                                     "--gen",
+                                     "--generations",
                                      std::to_string(job.gen),
-                                     "--pop",
+                                     "--population",
                                      std::to_string(job.pop),
                                      "--seed",
                                      std::to_string(job.seed)};

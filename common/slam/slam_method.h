@@ -60,6 +60,8 @@ struct SlamResult {
 struct SlamFlag {
   std::string flag, param, help;
   std::string value;  // a switch's; empty: the flag takes a value
+  // An older name of a flag that takes a value, still accepted with a deprecation warning.
+  std::string deprecated = {};
 };
 
 // A SLAM method: paper 002's reduced-search-space SLAM, and the methods to come, each a peer

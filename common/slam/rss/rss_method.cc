@@ -140,9 +140,11 @@ std::vector<SlamFlag> RssMethod::Flags() const {
        "local search fitness: eval1 (occupied cells, eq. 1) or eval2 (observations per occupied "
        "cell, eq. 2)",
        ""},
-      {"--particles", "rss.local.particles", "local search: PSO particles", ""},
+      {"--local-population", "rss.local.particles",
+       "local search: PSO particles (the swarm's size)", "", "--particles"},
       {"--local-iterations", "rss.local.iterations", "local search: PSO iterations per scan", ""},
-      {"--resolution", "rss.map.cell_size_m", "map cell size, m", ""},
+      {"--resolution", "rss.map.cell_size_m",
+       "map cell size, metres per cell (map.yaml's resolution)", ""},
       {"--local-only", "rss.global.enabled",
        "local search alone: no loop detection, no global search", "false"},
       {"--global-every", "rss.global.every_scans",
