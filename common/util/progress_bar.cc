@@ -108,7 +108,8 @@ void ProgressBar::Update(std::size_t done, std::string_view step) {
     first_time_ = now;
   }
   if (out_.style == Style::kLog) {
-    if (now - last_shown_ < kLogEvery) return;
+    // Work done needs no line: what it made follows.
+    if (done == total_ || now - last_shown_ < kLogEvery) return;
     last_shown_ = now;
     const std::string line = LogLine(done, step, now);
     if (out_.log) {

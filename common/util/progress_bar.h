@@ -23,8 +23,8 @@ namespace evoslam {
 //
 // The bar is as wide as the terminal leaves room for (10 to 30 characters, the same for the
 // whole work); a line still too wide loses the time elapsed, then its end. Elsewhere (a pipe, a
-// file, or under CI), a line in the log at info level at most every 10 s, the first after 10 s, so
-// that a long run is not silent and a short one adds nothing:
+// file, or under CI), a line in the log at info level at most every 10 s, the first after 10 s and
+// none once the work is done, so that a long run is not silent and a short one adds nothing:
 //
 //   progress: 450 of 910 scans (49 %), about 21 s left; global search 3/10
 //
