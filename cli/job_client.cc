@@ -1,11 +1,9 @@
 #include "cli/job_client.h"
 
-#include <memory>
-
 #include "common/io/file_bytes.h"
 #include "common/service/dataset_files.h"
+#include "common/service/job_progress.h"
 #include "common/util/error.h"
-#include "common/util/progress_bar.h"
 
 namespace evoslam::cli {
 
@@ -26,18 +24,8 @@ void UploadMap(ServiceClient& client, const std::filesystem::path& map, proto::J
 }
 
 proto::JobStatus WatchWithProgress(ServiceClient& client, const std::string& job_id) {
-  std::unique_ptr<ProgressBar> bar;
-  std::string phase;
-  return client.Watch(job_id, [&](const proto::ProgressEvent& e) {
-    const proto::JobStatus& s = e.status();
-    if (s.total() == 0) return;
-    if (!bar || s.phase() != phase) {
-      bar.reset();
-      phase = s.phase();
-      bar = std::make_unique<ProgressBar>(phase, s.total());
-    }
-    bar->Update(s.done());
-  });
+  JobProgress progress;
+  return client.Watch(job_id, [&](const proto::ProgressEvent& e) { progress.Show(e.status()); });
 }
 
 std::vector<proto::ResultFile> FollowToResult(ServiceClient& client, const std::string& job_id,

@@ -14,8 +14,9 @@ namespace evoslam::cli {
 // names the image by its base name, so both can live side by side on the coordinator).
 void UploadMap(ServiceClient& client, const std::filesystem::path& map, proto::JobSpec& spec);
 
-// Follows a job to its end, with a progress bar per phase on a terminal; returns its final
-// status.
+// Follows a job to its end with one progress bar for the whole job, scans done of its scans
+// with the step under way inside it: on a terminal a bar, elsewhere a line in the log at most
+// every 10 s (ProgressBar). Returns its final status.
 proto::JobStatus WatchWithProgress(ServiceClient& client, const std::string& job_id);
 
 // Follows a job to its end as WatchWithProgress does; throws Error when it failed or was

@@ -7,6 +7,7 @@
 #include "cli/commands.h"
 #include "cli/job_client.h"
 #include "cli/service_options.h"
+#include "common/service/job_progress.h"
 #include "common/service/job_state.h"
 #include "common/service/service_client.h"
 #include "common/util/error.h"
@@ -41,9 +42,10 @@ void PrintStatus(const proto::JobStatus& s) {
   std::printf("%s  %s  %s", s.job_id().c_str(), std::string(JobStateName(s.state())).c_str(),
               s.phase().c_str());
   if (s.total() > 0) {
-    std::printf(" %llu/%llu", static_cast<unsigned long long>(s.done()),
+    std::printf(" %llu/%llu scans", static_cast<unsigned long long>(s.done()),
                 static_cast<unsigned long long>(s.total()));
   }
+  if (const std::string step = StepText(s); !step.empty()) std::printf(" · %s", step.c_str());
   std::printf("  submitted %s", When(s.submitted_unix_s()).c_str());
   if (s.finished_unix_s() > 0) std::printf("  finished %s", When(s.finished_unix_s()).c_str());
   if (!s.error().empty()) std::printf("\n  error: %s", s.error().c_str());

@@ -661,7 +661,9 @@ void Coordinator::Impl::RunJob(const std::string& job_id) {
         context.resume = checkpoints.front().bytes;
         slot_epoch = checkpoints.front().epoch;
       }
-      store_.SetRunning(job_id, context.resume ? "resuming" : "loading", 0, 0, 0);
+      proto::JobStatus starting;
+      starting.set_phase(context.resume ? "resuming" : "loading");
+      store_.SetRunning(job_id, starting);
     }
     spdlog::log(notice_, "{}: {}", job_id,
                 context.resume ? "resuming from its checkpoint" : "running");
@@ -675,7 +677,7 @@ void Coordinator::Impl::RunJob(const std::string& job_id) {
       if (!throttle.Admit(p, ProgressThrottle::Clock::now())) return;
       {
         std::lock_guard lock(store_mutex_);
-        store_.SetRunning(job_id, p.phase(), p.done(), p.total(), p.evaluations());
+        store_.SetRunning(job_id, p);
       }
       Touch(job_id);
     };

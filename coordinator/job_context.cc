@@ -1,6 +1,7 @@
 #include "coordinator/job_context.h"
 
 #include "common/engine/engine_proto.h"
+#include "common/service/job_state.h"
 
 namespace evoslam {
 
@@ -14,14 +15,15 @@ void CheckpointThrottle::Offer(const std::function<std::string()>& serialize) {
   last_save_ = now;
 }
 
-void ReportProgress(const JobContext& context, const std::string& phase, std::uint64_t done,
-                    std::uint64_t total, std::uint64_t evaluations) {
+void ReportProgress(const JobContext& context, std::uint64_t done, std::uint64_t total,
+                    std::uint64_t evaluations, const proto::JobStep& step) {
   if (!context.progress) return;
   proto::JobStatus status;
-  status.set_phase(phase);
+  status.set_phase(std::string(JobKindName(context.spec.kind())));
   status.set_done(done);
   status.set_total(total);
   status.set_evaluations(evaluations);
+  if (!step.name().empty()) *status.mutable_step() = step;
   context.progress(status);
 }
 

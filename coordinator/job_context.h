@@ -57,9 +57,11 @@ auto ResumeState(const JobContext& context, FromProto from_proto)
   return from_proto(checkpoint);
 }
 
-// Tells the coordinator where the job stands: `done` of `total` in `phase`.
-void ReportProgress(const JobContext& context, const std::string& phase, std::uint64_t done,
-                    std::uint64_t total, std::uint64_t evaluations);
+// Tells the coordinator where the job stands: `done` of its `total` scans, the fitness
+// evaluations so far, and the step under way inside it (none when `step` has no name). The phase
+// is the job's kind ("slam", "localize").
+void ReportProgress(const JobContext& context, std::uint64_t done, std::uint64_t total,
+                    std::uint64_t evaluations, const proto::JobStep& step = {});
 
 // Starts (when `start`) and evolves each island for up to `generations` generations on the
 // workers, one EvolveIsland task per island on `problem`; the islands come back in place.

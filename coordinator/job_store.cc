@@ -7,7 +7,8 @@
 namespace evoslam {
 namespace {
 
-constexpr std::int64_t kSchemaVersion = 1;
+// 2: jobs.step, the step under way inside a running job (a serialised JobStep; empty: none).
+constexpr std::int64_t kSchemaVersion = 2;
 
 proto::JobStatus StatusFrom(Statement& row) {
   proto::JobStatus s;
@@ -21,11 +22,15 @@ proto::JobStatus StatusFrom(Statement& row) {
   s.set_error(row.Text(7));
   s.set_submitted_unix_s(row.Real(8));
   s.set_finished_unix_s(row.Real(9));
+  const std::string step = row.Text(10);
+  if (!step.empty() && !s.mutable_step()->ParseFromString(step)) {
+    throw Error("database: the progress of " + s.job_id() + " is corrupt");
+  }
   return s;
 }
 
 constexpr const char* kStatusColumns =
-    "id, kind, state, phase, done, total, evaluations, error, submitted, finished";
+    "id, kind, state, phase, done, total, evaluations, error, submitted, finished, step";
 
 }  // namespace
 
@@ -40,18 +45,23 @@ JobStore::JobStore(const std::filesystem::path& path) : db_(path) {
         "  phase TEXT NOT NULL DEFAULT '', done INTEGER NOT NULL DEFAULT 0,"
         "  total INTEGER NOT NULL DEFAULT 0, evaluations INTEGER NOT NULL DEFAULT 0,"
         "  error TEXT NOT NULL DEFAULT '', submitted REAL NOT NULL, finished REAL NOT NULL"
-        "  DEFAULT 0);"
+        "  DEFAULT 0, step BLOB NOT NULL DEFAULT x'');"
         "CREATE TABLE IF NOT EXISTS checkpoints (job INTEGER NOT NULL REFERENCES jobs(id),"
         "  island INTEGER NOT NULL, epoch INTEGER NOT NULL, state BLOB NOT NULL,"
         "  PRIMARY KEY (job, island));"
         "CREATE TABLE IF NOT EXISTS results (job INTEGER NOT NULL REFERENCES jobs(id),"
         "  name TEXT NOT NULL, content BLOB NOT NULL, PRIMARY KEY (job, name));"
-        "INSERT OR IGNORE INTO meta VALUES ('schema', 1);");
+        "INSERT OR IGNORE INTO meta VALUES ('schema', 2);");
     Statement schema = db_.Prepare("SELECT value FROM meta WHERE key = 'schema'");
-    if (!schema.Step() || schema.Int(0) != kSchemaVersion) {
-      throw Error("database " + path.string() + " has schema version " +
-                  std::to_string(schema.Int(0)) + ", this build reads version " +
-                  std::to_string(kSchemaVersion));
+    const std::int64_t version = schema.Step() ? schema.Int(0) : 0;
+    if (version == 1) {
+      // Version 1 lacks only the step: its jobs have none.
+      db_.Execute(
+          "ALTER TABLE jobs ADD COLUMN step BLOB NOT NULL DEFAULT x'';"
+          "UPDATE meta SET value = 2 WHERE key = 'schema';");
+    } else if (version != kSchemaVersion) {
+      throw Error("database " + path.string() + " has schema version " + std::to_string(version) +
+                  ", this build reads version " + std::to_string(kSchemaVersion));
     }
   });
 }
@@ -132,18 +142,18 @@ std::vector<std::string> JobStore::Unfinished() {
   return ids;
 }
 
-void JobStore::SetRunning(const std::string& job_id, const std::string& phase, std::uint64_t done,
-                          std::uint64_t total, std::uint64_t evaluations) {
+void JobStore::SetRunning(const std::string& job_id, const proto::JobStatus& progress) {
   Statement update = db_.Prepare(
-      "UPDATE jobs SET state = ?2, phase = ?3, done = ?4, total = ?5, evaluations = ?6"
-      " WHERE id = ?1 AND state IN (?7, ?2)");
+      "UPDATE jobs SET state = ?2, phase = ?3, done = ?4, total = ?5, evaluations = ?6,"
+      " step = ?8 WHERE id = ?1 AND state IN (?7, ?2)");
   update.Bind(1, JobNumber(job_id))
       .Bind(2, static_cast<std::int64_t>(proto::JOB_STATE_RUNNING))
-      .Bind(3, phase)
-      .Bind(4, static_cast<std::int64_t>(done))
-      .Bind(5, static_cast<std::int64_t>(total))
-      .Bind(6, static_cast<std::int64_t>(evaluations))
+      .Bind(3, progress.phase())
+      .Bind(4, static_cast<std::int64_t>(progress.done()))
+      .Bind(5, static_cast<std::int64_t>(progress.total()))
+      .Bind(6, static_cast<std::int64_t>(progress.evaluations()))
       .Bind(7, static_cast<std::int64_t>(proto::JOB_STATE_QUEUED))
+      .BindBlob(8, progress.has_step() ? progress.step().SerializeAsString() : std::string())
       .Run();
 }
 

@@ -34,8 +34,9 @@ class JobStore {
   // Jobs that were queued or running when the coordinator last stopped, oldest first.
   std::vector<std::string> Unfinished();
 
-  void SetRunning(const std::string& job_id, const std::string& phase, std::uint64_t done,
-                  std::uint64_t total, std::uint64_t evaluations);
+  // Marks a queued or running job running, where `progress` says it stands: its phase, done,
+  // total, evaluations and step (none when `progress` has none).
+  void SetRunning(const std::string& job_id, const proto::JobStatus& progress);
   // Ends a job still queued or running, dropping its checkpoints; `error` is empty unless it
   // failed. False when the job had already ended (it was cancelled meanwhile, say): a job ends
   // once.

@@ -96,7 +96,7 @@ std::vector<proto::ResultFile> RunLocalizeJob(const JobContext& context) {
     throttle.Offer([&] { return ToProto(state).SerializeAsString(); });
   };
   runtime.progress = [&](std::size_t done, std::size_t) {
-    ReportProgress(context, "localize", done, total, evaluations);
+    ReportProgress(context, done, total, evaluations);
   };
   // Progress shows where the job stands from the start, a resumed job included.
   runtime.progress(resume ? resume->next_scan : 0, total);

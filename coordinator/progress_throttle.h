@@ -9,11 +9,12 @@
 namespace evoslam {
 
 // Which of a job's progress reports the coordinator records. A record costs a database write and
-// an event to every watcher, and a local search reports every scan, so within a phase at most one
-// report per interval is kept, plus the one that completes the phase. A report of another phase
-// than the last one recorded is kept after a tenth of the interval: a stretch of local search
-// between two global searches can be shorter than the interval, and a watcher (or a test waiting
-// for the job to be part-way) would otherwise never see it.
+// an event to every watcher, and a job reports every scan, so while the phase and the step under
+// way stay the same at most one report per interval is kept, plus the one that completes the job.
+// A report whose phase or step (by name, or none) differs from the last one recorded is kept after
+// a tenth of the interval: a stretch of scans between two global searches can be shorter than the
+// interval, and a watcher (or a test waiting for the job to be part-way) would otherwise never see
+// it.
 class ProgressThrottle {
  public:
   using Clock = std::chrono::steady_clock;
@@ -27,6 +28,8 @@ class ProgressThrottle {
   Clock::duration interval_;
   bool any_ = false;
   std::string phase_;
+  bool step_ = false;
+  std::string step_name_;
   Clock::time_point last_{};
 };
 

@@ -57,9 +57,12 @@ std::vector<proto::ResultFile> RunSlamJob(const JobContext& context) {
     context.board->ThrowIfInterrupted(context.job_id);
     throttle.Offer(serialize);
   };
-  hooks.progress = [&](const std::string& phase, std::size_t done, std::size_t total,
-                       std::uint64_t evaluations) {
-    ReportProgress(context, phase, done, total, evaluations);
+  hooks.progress = [&](const SlamProgress& p) {
+    proto::JobStep step;
+    step.set_name(p.step);
+    step.set_done(p.step_done);
+    step.set_total(p.step_total);
+    ReportProgress(context, p.done, p.total, p.evaluations, step);
   };
   const SlamResult result = method.Run(dataset, params, hooks);
   return SlamOutputs(dataset, params, result, relations, context.worker_threads);

@@ -166,7 +166,7 @@ TEST_F(SlamJobTest, ItResumesFromItsCheckpointAfterTheCoordinatorIsKilledAndRest
     auto client = Client(c.clients);
     WaitForWorkers(client, 2);
     job_id = SubmitSlam(client);
-    before = WaitForProgress(client, job_id, kScans / 3, "local search");
+    before = WaitForProgress(client, job_id, kScans / 3, "slam");
   }
   const CoordinatorProcess restarted = KillAndResume(c, job_id, before);
   ASSERT_FALSE(HasFailure());

@@ -407,8 +407,8 @@ class ServiceTest : public ::testing::Test {
     }
   }
 
-  // Waits until the job has done at least `scans` scans of its `phase` ("local search" for a
-  // SLAM job) but not all of them, and returns its status then. Throws when it finishes first:
+  // Waits until the job has done at least `scans` scans of its `phase` ("slam" for a SLAM job)
+  // but not all of them, and returns its status then. Throws when it finishes first:
   // the test could not disturb it mid-way.
   proto::JobStatus WaitForProgress(evoslam::ServiceClient& client, const std::string& job_id,
                                    std::uint64_t scans = 1, const std::string& phase = "localize") {

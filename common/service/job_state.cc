@@ -24,4 +24,15 @@ std::string_view JobStateName(proto::JobState state) {
   }
 }
 
+std::string_view JobKindName(proto::JobKind kind) {
+  switch (kind) {
+    case proto::JOB_KIND_SLAM:
+      return "slam";
+    case proto::JOB_KIND_LOCALIZE:
+      return "localize";
+    default:
+      return "job";
+  }
+}
+
 }  // namespace evoslam

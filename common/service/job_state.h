@@ -11,6 +11,8 @@ namespace evoslam {
 bool IsFinished(proto::JobState state);
 // "queued", "running", "succeeded", "failed", "cancelled".
 std::string_view JobStateName(proto::JobState state);
+// The subcommand that runs a job of this kind: "slam", "localize"; "job" for an unknown kind.
+std::string_view JobKindName(proto::JobKind kind);
 
 }  // namespace evoslam
 

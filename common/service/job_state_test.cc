@@ -16,5 +16,11 @@ TEST(JobStateTest, OnlySucceededFailedAndCancelledAreFinal) {
   EXPECT_EQ(JobStateName(proto::JOB_STATE_UNSPECIFIED), "unknown");
 }
 
+TEST(JobStateTest, KindsAreNamedAfterTheirSubcommands) {
+  EXPECT_EQ(JobKindName(proto::JOB_KIND_SLAM), "slam");
+  EXPECT_EQ(JobKindName(proto::JOB_KIND_LOCALIZE), "localize");
+  EXPECT_EQ(JobKindName(proto::JOB_KIND_UNSPECIFIED), "job");
+}
+
 }  // namespace
 }  // namespace evoslam

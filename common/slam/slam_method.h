@@ -24,14 +24,24 @@
 
 namespace evoslam {
 
+// Where a run stands: `done` of the `total` scans it maps, the fitness evaluations so far, and
+// the step under way inside the run while it stands there, if any (for rss a global search,
+// `step_done` of `step_total` generations).
+struct SlamProgress {
+  std::size_t done = 0;
+  std::size_t total = 0;
+  std::uint64_t evaluations = 0;
+  std::string step;  // empty: none
+  std::size_t step_done = 0;
+  std::size_t step_total = 0;
+};
+
 // What the run of a SLAM method needs from where it runs: the embedded service, a coordinator,
 // or a test. Every hook may be left empty.
 struct SlamHooks {
-  // Where the job stands: `done` of `total` in `phase` ("local search", "global search", ...),
-  // and the fitness evaluations so far; called once at the start, a resumed run's included.
-  std::function<void(const std::string& phase, std::size_t done, std::size_t total,
-                     std::uint64_t evaluations)>
-      progress;
+  // Where the run stands; called once at the start, a resumed run's included, then as it
+  // advances. `done` never goes back, within a run nor across a resume.
+  std::function<void(const SlamProgress& progress)> progress;
   // Offered after every step: the method's state, serialised only when the caller asks for it
   // by calling `serialize`. A run resumed from those bytes ends as the uninterrupted run does.
   std::function<void(const std::function<std::string()>& serialize)> checkpoint;

@@ -113,7 +113,9 @@ class RssSlamDriver {
   // The checkpoint first, so that progress never runs ahead of what a resume would start from.
   void ScanDone(std::size_t i);
   void Checkpoint();
-  void Progress(const std::string& phase, std::size_t done, std::size_t total) const;
+  // Scans done, and the global search under way among them, if any.
+  void Progress(std::size_t done, std::size_t search_done = 0,
+                std::size_t search_generations = 0) const;
 
   const Dataset& dataset_;
   const RssSlamParams& params_;
@@ -169,15 +171,24 @@ void RssSlamDriver::Checkpoint() {
   runtime_.checkpoint(state_);
 }
 
-void RssSlamDriver::Progress(const std::string& phase, std::size_t done, std::size_t total) const {
-  if (runtime_.progress) {
-    runtime_.progress(phase, done, total, state_.local_evaluations + state_.global_evaluations);
+void RssSlamDriver::Progress(std::size_t done, std::size_t search_done,
+                             std::size_t search_generations) const {
+  if (!runtime_.progress) return;
+  SlamProgress progress;
+  progress.done = done;
+  progress.total = scans_;
+  progress.evaluations = state_.local_evaluations + state_.global_evaluations;
+  if (search_generations > 0) {
+    progress.step = "global search";
+    progress.step_done = search_done;
+    progress.step_total = search_generations;
   }
+  runtime_.progress(progress);
 }
 
 void RssSlamDriver::ScanDone(std::size_t i) {
   Checkpoint();
-  Progress("local search", i + 1, scans_);
+  Progress(i + 1);
 }
 
 void RssSlamDriver::LocalStep(std::size_t i) {
@@ -228,15 +239,18 @@ void RssSlamDriver::GlobalSearch(std::size_t current, const std::optional<LoopCl
                                                     root_.Stream(scans_ + task.index).NextU64());
   if (!state_.search) islands.Start(step);
   state_.search_on_loop = loop.has_value();
-  Progress("global search", 0, generations);
+  // Scan `current` is done once its search is: until then the run stands at the scans before it.
+  const auto search_progress = [&] {
+    const std::size_t interval = GlobalIslandModel(global_).migration.interval;
+    Progress(current, std::min(generations, islands.epoch() * interval), generations);
+  };
+  search_progress();
   while (!islands.RunEpoch(step)) {
     if (runtime_.checkpoint) {
       state_.search = islands.Checkpoint();
       Checkpoint();
     }
-    Progress("global search",
-             std::min(generations, islands.epoch() * GlobalIslandModel(global_).migration.interval),
-             generations);
+    search_progress();
   }
   state_.search.reset();
   state_.search_on_loop = false;
@@ -276,7 +290,8 @@ void RssSlamDriver::Apply(const GlobalSearchProblem& problem, const GlobalSearch
 }
 
 RssSlamResult RssSlamDriver::Run() {
-  Progress("local search", state_.next_scan, scans_);
+  // A search part-way belongs to the last scan of the state, not done until the search is.
+  Progress(state_.search ? state_.next_scan - 1 : state_.next_scan);
   if (state_.search) {
     const std::size_t current = state_.next_scan - 1;
     std::optional<LoopClosure> loop;

@@ -102,11 +102,10 @@ struct RssSlamRuntime {
   // After every scan (and the global search it started, if any), before its progress, and
   // after every epoch of a global search.
   std::function<void(const RssSlamState&)> checkpoint;
-  // Phase "local search" (scans done of all) and "global search" (generations of one search),
-  // with the fitness evaluations so far: once at the start, then after every scan and epoch.
-  std::function<void(const std::string& phase, std::size_t done, std::size_t total,
-                     std::uint64_t evaluations)>
-      progress;
+  // Scans done of all, with a global search under way as the step ("global search",
+  // generations done of its generations), and the fitness evaluations so far: once at the
+  // start, then after every scan and every epoch of a global search.
+  std::function<void(const SlamProgress&)> progress;
   const RssSlamState* resume = nullptr;
 };
 

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/sim/simulator.h"
@@ -180,6 +181,70 @@ TEST(RssSlamTest, ResumingFromAnyCheckpointGivesTheUninterruptedRun) {
   for (const bool free_frontier : {false, true}) {
     SCOPED_TRACE(free_frontier ? "edge free" : "edge counted");
     ExpectResumesGiveTheUninterruptedRun(free_frontier);
+  }
+}
+
+// The run reports scans done of all, never going back, with each global search as the step
+// under way at the scans before the one that started it; reporting changes nothing, and a run
+// resumed from a checkpoint carries on from where the progress stood.
+TEST(RssSlamTest, ProgressIsScansDoneWithTheGlobalSearchAsItsStep) {
+  const Dataset d = Drive(60);
+  RssSlamParams params = Quick();
+  params.mutable_global()->set_generations(25);  // epochs of 10: 10, 20 and 25 generations
+  params.mutable_global()->set_preset("immune-004");
+  std::vector<SlamProgress> seen;
+  // The number of reports seen when each checkpoint part-way through a search was offered.
+  std::vector<std::pair<RssSlamState, std::size_t>> part_way;
+  RssSlamRuntime runtime;
+  runtime.progress = [&](const SlamProgress& p) { seen.push_back(p); };
+  runtime.checkpoint = [&](const RssSlamState& s) {
+    if (s.search) part_way.emplace_back(s, seen.size());
+  };
+  const RssSlamResult run = testing::RunRss(d, params, 3, runtime);
+  ExpectSameRun(testing::RunRss(d, params, 3), run);
+
+  ASSERT_FALSE(seen.empty());
+  EXPECT_EQ(seen.front().done, 0u);
+  EXPECT_EQ(seen.back().done, 60u);
+  EXPECT_TRUE(seen.back().step.empty());
+  std::vector<std::size_t> searches_at;  // the scans done when each search started
+  for (std::size_t k = 0; k < seen.size(); ++k) {
+    const SlamProgress& p = seen[k];
+    SCOPED_TRACE("report " + std::to_string(k));
+    EXPECT_EQ(p.total, 60u);
+    if (k > 0) {
+      EXPECT_GE(p.done, seen[k - 1].done);
+      EXPECT_GE(p.evaluations, seen[k - 1].evaluations);
+    }
+    if (p.step.empty()) continue;
+    EXPECT_EQ(p.step, "global search");
+    EXPECT_EQ(p.step_total, 25u);
+    EXPECT_LE(p.step_done, p.step_total);
+    if (p.step_done == 0) {
+      searches_at.push_back(p.done);
+    } else {
+      ASSERT_GT(k, 0u);
+      EXPECT_EQ(p.done, seen[k - 1].done) << "the scans stand still during a search";
+      EXPECT_GT(p.step_done, seen[k - 1].step_done);
+    }
+  }
+  ASSERT_EQ(searches_at.size(), run.global_searches.size());
+  ASSERT_EQ(searches_at.size(), 2u);
+  for (std::size_t g = 0; g < searches_at.size(); ++g) {
+    EXPECT_EQ(searches_at[g], run.global_searches[g].last - 1) << "search " << g;
+  }
+
+  ASSERT_FALSE(part_way.empty());
+  for (const auto& [state, reports] : part_way) {
+    std::vector<SlamProgress> resumed;
+    RssSlamRuntime resume;
+    resume.resume = &state;
+    resume.progress = [&](const SlamProgress& p) { resumed.push_back(p); };
+    ExpectSameRun(run, testing::RunRss(d, params, 3, resume));
+    ASSERT_FALSE(resumed.empty());
+    EXPECT_GE(resumed.front().done, seen[reports - 1].done) << "went back on resuming";
+    EXPECT_EQ(resumed.front().done, state.next_scan - 1);
+    EXPECT_EQ(resumed.back().done, 60u);
   }
 }
 
