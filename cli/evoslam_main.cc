@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
   app.parse_complete_callback([&] {
     evoslam::LogToStderr("evoslam");
     spdlog::set_level(spdlog::level::from_str(level));
-    evoslam::cli::WarnDeprecatedNames();
+    evoslam::cli::WarnDeprecatedNames(app);
   });
 
   evoslam::cli::AddInfoCommand(app);

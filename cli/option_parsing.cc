@@ -53,11 +53,9 @@ CLI::Validator NumberValidator(bool (*ok)(double), const std::string& what,
       name);
 }
 
-// The warnings of the deprecated names used, which WarnDeprecatedNames logs.
-std::vector<std::string>& PendingDeprecationWarnings() {
-  static std::vector<std::string> warnings;
-  return warnings;
-}
+// A deprecated spelling's description: this, then the option's name. WarnDeprecatedNames finds
+// the spellings used by it.
+constexpr std::string_view kDeprecatedPrefix = "deprecated: use ";
 
 }  // namespace
 
@@ -128,7 +126,6 @@ void AddDeprecatedName(CLI::App* cmd, const std::string& old_name, CLI::Option* 
   cmd->add_option_function<std::string>(
          old_name,
          [old_name, name, option](const std::string& value) {
-           PendingDeprecationWarnings().push_back(old_name + " is deprecated; use " + name);
            option->add_result(value);
            try {
              option->run_callback();
@@ -138,13 +135,20 @@ void AddDeprecatedName(CLI::App* cmd, const std::string& old_name, CLI::Option* 
              throw CLI::ValidationError(old_name + " (deprecated; use " + name + ")", e.what());
            }
          },
-         "deprecated: " + name)
+         std::string(kDeprecatedPrefix) + name)
       ->group("");
 }
 
-void WarnDeprecatedNames() {
-  for (const std::string& warning : PendingDeprecationWarnings()) spdlog::warn("{}", warning);
-  PendingDeprecationWarnings().clear();
+void WarnDeprecatedNames(const CLI::App& app) {
+  for (const CLI::Option* option : app.get_options()) {
+    const std::string& description = option->get_description();
+    if (option->count() > 0 && description.starts_with(kDeprecatedPrefix)) {
+      // get_name is empty for a hidden option: its long name is the spelling used.
+      spdlog::warn("--{} is deprecated; use {}", option->get_lnames().front(),
+                   description.substr(kDeprecatedPrefix.size()));
+    }
+  }
+  for (const CLI::App* used : app.get_subcommands()) WarnDeprecatedNames(*used);
 }
 
 }  // namespace evoslam::cli

@@ -33,9 +33,9 @@ CLI::Option* AddLogOption(CLI::App* cmd, const std::string& positional, std::str
 // deprecated (WarnDeprecatedNames).
 void AddDeprecatedName(CLI::App* cmd, const std::string& old_name, CLI::Option* option);
 
-// Logs a warning for each deprecated name the command line used. main calls it once logging is
-// set up, so that --log-level applies.
-void WarnDeprecatedNames();
+// Logs a warning for each deprecated name the command line used, in `app` and the subcommands it
+// ran. main calls it once logging is set up, so that --log-level applies.
+void WarnDeprecatedNames(const CLI::App& app);
 
 }  // namespace evoslam::cli
 
