@@ -369,6 +369,9 @@ proto::ClientReply Coordinator::Impl::Submit(proto::JobSpec spec) {
             std::string(what) + " " + ref.name() + " (" + ref.sha256() + ") has not been uploaded");
       }
     }
+    CheckJobFileReferences(spec, [&](const proto::DatasetRef& ref) {
+      return store_.Dataset(ref.sha256()).value_or("");
+    });
     if (store_.CountUnfinished() >= options_.max_queued_jobs) {
       throw ProtocolError(proto::ERROR_CODE_QUEUE_FULL,
                           "the queue is full (" + std::to_string(options_.max_queued_jobs) +
