@@ -56,7 +56,8 @@ CLI::App* JobCommand(CLI::App& app, const char* name, const char* help,
                      const std::shared_ptr<JobArgs>& a, bool takes_id) {
   auto* cmd = app.add_subcommand(name, help);
   AddServiceOptions(cmd, a->service, false);
-  if (takes_id) cmd->add_option("job", a->job_id, "the job's id, e.g. job-3")->required();
+  if (takes_id)
+    cmd->add_option("job", a->job_id, "the job's id: job- and 32 hex digits")->required();
   return cmd;
 }
 

@@ -92,6 +92,24 @@ struct Watcher {
   std::uint64_t request_id = 0;
 };
 
+// Who sent a request: the client's CURVE public key (ZAP's User-Id), "" with CURVE off, when
+// every client is the one owner of every job.
+struct Requester {
+  std::string key;
+  bool admin = false;  // sees every job
+  bool Sees(const std::string& owner) const { return admin || owner == key; }
+};
+
+// The User-Id ZAP gave the connection a frame came on: the peer's public key. (zmq_msg_gets
+// takes a mutable message.)
+std::string UserId(zmq::message_t& frame) {
+  try {
+    return frame.gets("User-Id");
+  } catch (const zmq::error_t&) {
+    return {};  // no ZAP handler answered for this connection
+  }
+}
+
 }  // namespace
 
 class Coordinator::Impl {
@@ -107,18 +125,23 @@ class Coordinator::Impl {
   // Broker thread.
   void OnClientFrames();
   void OnWorkerFrames();
-  proto::ClientReply Handle(const std::string& identity, const proto::ClientRequest& request);
-  proto::ClientReply Upload(const proto::UploadDataset& upload);
-  proto::ClientReply Submit(proto::JobSpec spec);
-  proto::ClientReply Watch(const std::string& identity, const proto::ClientRequest& request);
-  proto::ClientReply Result(const std::string& job_id);
-  proto::ClientReply Cancel(const std::string& job_id);
+  proto::ClientReply Handle(const std::string& identity, const Requester& requester,
+                            const proto::ClientRequest& request);
+  proto::ClientReply Upload(const proto::UploadDataset& upload, const Requester& requester);
+  proto::ClientReply Submit(proto::JobSpec spec, const Requester& requester);
+  proto::ClientReply Watch(const std::string& identity, const Requester& requester,
+                           const proto::ClientRequest& request);
+  proto::ClientReply Result(const std::string& job_id, const Requester& requester);
+  proto::ClientReply Cancel(const std::string& job_id, const Requester& requester);
   void HandleWorker(const std::string& identity, const proto::WorkerMessage& message);
   void SendToWorker(const std::string& identity, const proto::CoordinatorMessage& message);
   void Dispatch();
   void CheckWorkers(Clock::time_point now);
   void FlushEvents();
   proto::JobStatus StatusOf(const std::string& job_id);
+  // StatusOf a job `requester` may see; any other is UNKNOWN_JOB, as if it did not exist.
+  proto::JobStatus StatusFor(const std::string& job_id, const Requester& requester);
+  void Collect();
 
   // Job threads.
   void JobLoop(const std::stop_token& stop);
@@ -144,6 +167,7 @@ class Coordinator::Impl {
   std::atomic<std::uint32_t> worker_threads_{0};  // of the workers now known, for reports
   std::multimap<std::string, Watcher> watchers_;  // broker thread only
   Clock::time_point next_heartbeat_;
+  Clock::time_point next_collection_;
 
   std::mutex jobs_mutex_;
   std::condition_variable jobs_cv_;
@@ -165,9 +189,10 @@ Coordinator::Impl::Impl(zmq::context_t& context, CoordinatorOptions options)
       board_([this] { waker_.Wake(); }) {
   limits_.max_frame_bytes = options_.max_message_bytes;
   if (!options_.curve_secret_key.empty()) {
-    zap_.emplace(context,
-                 std::map<std::string, std::set<std::string>>{{"clients", options_.client_keys},
-                                                              {"workers", options_.worker_keys}});
+    std::set<std::string> clients = options_.client_keys;
+    clients.insert(options_.admin_keys.begin(), options_.admin_keys.end());
+    zap_.emplace(context, std::map<std::string, std::set<std::string>>{
+                              {"clients", std::move(clients)}, {"workers", options_.worker_keys}});
     MakeCurveServer(clients_, {options_.curve_secret_key}, "clients");
     MakeCurveServer(workers_, {options_.curve_secret_key}, "workers");
   }
@@ -182,6 +207,7 @@ Coordinator::Impl::Impl(zmq::context_t& context, CoordinatorOptions options)
   Bind(clients_, options_.clients_endpoint, "clients");
   Bind(workers_, options_.workers_endpoint, "workers");
 
+  Collect();
   for (const std::string& id : store_.Unfinished()) runnable_.push_back(id);
   if (!runnable_.empty()) spdlog::log(notice_, "resuming {} unfinished jobs", runnable_.size());
   for (std::size_t i = 0; i < std::max<std::size_t>(1, options_.max_running_jobs); ++i)
@@ -222,6 +248,7 @@ void Coordinator::Impl::Run(const std::stop_token& stop) {
     Dispatch();
     FlushEvents();
     worker_threads_ = table_.threads();
+    if (options_.retention_seconds > 0 && now >= next_collection_) Collect();
   }
   spdlog::log(notice_, "coordinator: stopping; running jobs resume at the next start");
 }
@@ -244,7 +271,12 @@ void Coordinator::Impl::OnClientFrames() {
     } else {
       try {
         const proto::ClientRequest request = DecodeClientRequest(Bytes((*frames)[1]), limits_);
-        reply = Handle(identity, request);
+        Requester requester;
+        if (zap_) {
+          requester.key = UserId((*frames)[1]);
+          requester.admin = options_.admin_keys.contains(requester.key);
+        }
+        reply = Handle(identity, requester, request);
       } catch (const ProtocolError& e) {
         spdlog::warn("client {}: refused: {}", Peer(identity), e.what());
         reply = ErrorReplyFor(0, e.code(), e.what());
@@ -255,34 +287,36 @@ void Coordinator::Impl::OnClientFrames() {
 }
 
 proto::ClientReply Coordinator::Impl::Handle(const std::string& identity,
+                                             const Requester& requester,
                                              const proto::ClientRequest& request) {
   proto::ClientReply reply;
   try {
     switch (request.request_case()) {
       case proto::ClientRequest::kUpload:
-        reply = Upload(request.upload());
+        reply = Upload(request.upload(), requester);
         break;
       case proto::ClientRequest::kSubmit:
-        reply = Submit(request.submit().spec());
+        reply = Submit(request.submit().spec(), requester);
         break;
       case proto::ClientRequest::kStatus:
-        *reply.mutable_status() = StatusOf(request.status().job_id());
+        *reply.mutable_status() = StatusFor(request.status().job_id(), requester);
         break;
       case proto::ClientRequest::kJobs: {
         // Set even when empty: a reply with nothing in its oneof is refused as malformed.
         proto::JobList& jobs = *reply.mutable_jobs();
         std::lock_guard lock(store_mutex_);
-        for (auto& s : store_.Jobs()) *jobs.add_jobs() = std::move(s);
+        const auto owner = requester.admin ? std::nullopt : std::optional(requester.key);
+        for (auto& s : store_.Jobs(owner)) *jobs.add_jobs() = std::move(s);
         break;
       }
       case proto::ClientRequest::kWatch:
-        reply = Watch(identity, request);
+        reply = Watch(identity, requester, request);
         break;
       case proto::ClientRequest::kResult:
-        reply = Result(request.result().job_id());
+        reply = Result(request.result().job_id(), requester);
         break;
       case proto::ClientRequest::kCancel:
-        reply = Cancel(request.cancel().job_id());
+        reply = Cancel(request.cancel().job_id(), requester);
         break;
       case proto::ClientRequest::kWorkers: {
         proto::WorkerList& workers = *reply.mutable_workers();  // set even when empty, as above
@@ -309,7 +343,8 @@ proto::ClientReply Coordinator::Impl::Handle(const std::string& identity,
   return reply;
 }
 
-proto::ClientReply Coordinator::Impl::Upload(const proto::UploadDataset& upload) {
+proto::ClientReply Coordinator::Impl::Upload(const proto::UploadDataset& upload,
+                                             const Requester& requester) {
   if (upload.content().size() > options_.max_dataset_bytes) {
     throw ProtocolError(
         proto::ERROR_CODE_TOO_LARGE,
@@ -322,8 +357,10 @@ proto::ClientReply Coordinator::Impl::Upload(const proto::UploadDataset& upload)
     ValidateDatasetRef(Ref(upload.sha256()), "dataset");
     bool present = false;
     {
+      // Only the client's own uploads count: whether another client has some bytes stays its
+      // own business, and bytes uploaded once are the uploader's from then on.
       std::lock_guard lock(store_mutex_);
-      present = store_.HasDataset(upload.sha256());
+      present = store_.ClaimDataset(upload.sha256(), requester.key, UnixNow());
     }
     if (!present) {
       throw ProtocolError(proto::ERROR_CODE_UNKNOWN_DATASET,
@@ -342,7 +379,20 @@ proto::ClientReply Coordinator::Impl::Upload(const proto::UploadDataset& upload)
   bool added = false;
   {
     std::lock_guard lock(store_mutex_);
-    added = store_.PutDataset(sha, upload.name(), upload.content());
+    if (options_.client_quota_bytes > 0 && !store_.OwnsDataset(sha, requester.key)) {
+      const std::uint64_t stored = store_.StoredBytes(requester.key);
+      if (stored + upload.content().size() > options_.client_quota_bytes) {
+        throw ProtocolError(
+            proto::ERROR_CODE_QUOTA_EXCEEDED,
+            "dataset " + upload.name() + " of " + std::to_string(upload.content().size()) +
+                " bytes would take this client's stored bytes to " +
+                std::to_string(stored + upload.content().size()) + ", over its quota of " +
+                std::to_string(options_.client_quota_bytes) +
+                "; the coordinator drops datasets no job reads and old results "
+                "after its retention");
+      }
+    }
+    added = store_.PutDataset(sha, upload.name(), upload.content(), requester.key, UnixNow());
   }
   proto::ClientReply reply;
   proto::DatasetStored& stored = *reply.mutable_stored();
@@ -355,7 +405,7 @@ proto::ClientReply Coordinator::Impl::Upload(const proto::UploadDataset& upload)
   return reply;
 }
 
-proto::ClientReply Coordinator::Impl::Submit(proto::JobSpec spec) {
+proto::ClientReply Coordinator::Impl::Submit(proto::JobSpec spec, const Requester& requester) {
   PrepareJobSpec(spec);
   const auto refs = JobDatasets(spec);
   std::string id;
@@ -363,18 +413,21 @@ proto::ClientReply Coordinator::Impl::Submit(proto::JobSpec spec) {
     std::lock_guard lock(store_mutex_);
     for (const auto& [what, ref] : refs) {
       ValidateDatasetRef(ref, what);
-      if (!store_.HasDataset(ref.sha256())) {
+      if (!store_.OwnsDataset(ref.sha256(), requester.key)) {
         throw ProtocolError(
             proto::ERROR_CODE_UNKNOWN_DATASET,
             std::string(what) + " " + ref.name() + " (" + ref.sha256() + ") has not been uploaded");
       }
     }
+    CheckJobFileReferences(spec, [&](const proto::DatasetRef& ref) {
+      return store_.Dataset(ref.sha256()).value_or("");
+    });
     if (store_.CountUnfinished() >= options_.max_queued_jobs) {
       throw ProtocolError(proto::ERROR_CODE_QUEUE_FULL,
                           "the queue is full (" + std::to_string(options_.max_queued_jobs) +
                               " jobs queued or running); try again later");
     }
-    id = store_.AddJob(spec, UnixNow());
+    id = store_.AddJob(spec, requester.key, UnixNow());
   }
   spdlog::log(notice_, "{}: queued", id);
   Schedule(id);
@@ -390,11 +443,23 @@ proto::JobStatus Coordinator::Impl::StatusOf(const std::string& job_id) {
   return *status;
 }
 
-proto::ClientReply Coordinator::Impl::Watch(const std::string& identity,
+proto::JobStatus Coordinator::Impl::StatusFor(const std::string& job_id,
+                                              const Requester& requester) {
+  {
+    std::lock_guard lock(store_mutex_);
+    const auto owner = store_.Owner(job_id);
+    if (!owner || !requester.Sees(*owner)) {
+      throw ProtocolError(proto::ERROR_CODE_UNKNOWN_JOB, "no job " + job_id.substr(0, 64));
+    }
+  }
+  return StatusOf(job_id);
+}
+
+proto::ClientReply Coordinator::Impl::Watch(const std::string& identity, const Requester& requester,
                                             const proto::ClientRequest& request) {
   const std::string& job_id = request.watch().job_id();
   proto::ClientReply reply;
-  *reply.mutable_event()->mutable_status() = StatusOf(job_id);
+  *reply.mutable_event()->mutable_status() = StatusFor(job_id, requester);
   if (!IsFinished(reply.event().status().state())) {
     if (watchers_.size() >= options_.max_watchers) {
       throw ProtocolError(proto::ERROR_CODE_QUEUE_FULL, "too many clients are watching jobs");
@@ -404,8 +469,9 @@ proto::ClientReply Coordinator::Impl::Watch(const std::string& identity,
   return reply;
 }
 
-proto::ClientReply Coordinator::Impl::Result(const std::string& job_id) {
-  const proto::JobStatus status = StatusOf(job_id);
+proto::ClientReply Coordinator::Impl::Result(const std::string& job_id,
+                                             const Requester& requester) {
+  const proto::JobStatus status = StatusFor(job_id, requester);
   proto::ClientReply reply;
   switch (status.state()) {
     case proto::JOB_STATE_SUCCEEDED: {
@@ -423,8 +489,9 @@ proto::ClientReply Coordinator::Impl::Result(const std::string& job_id) {
   }
 }
 
-proto::ClientReply Coordinator::Impl::Cancel(const std::string& job_id) {
-  StatusOf(job_id);  // throws for an unknown job
+proto::ClientReply Coordinator::Impl::Cancel(const std::string& job_id,
+                                             const Requester& requester) {
+  StatusFor(job_id, requester);  // throws for a job unknown to the requester
   bool cancelled = false;
   {
     std::lock_guard lock(store_mutex_);
@@ -458,6 +525,23 @@ void Coordinator::Impl::FlushEvents() {
       const bool delivered = SendTo(clients_, it->second.identity, Encode(reply));
       it = (finished || !delivered) ? watchers_.erase(it) : std::next(it);
     }
+  }
+}
+
+void Coordinator::Impl::Collect() {
+  // A quarter of the retention between two collections, so nothing outstays it by much, but at
+  // least a second and at most ten minutes apart.
+  next_collection_ = Clock::now() + Seconds(std::clamp(options_.retention_seconds / 4, 1.0, 600.0));
+  if (options_.retention_seconds <= 0) return;
+  JobStore::Collected collected;
+  {
+    std::lock_guard lock(store_mutex_);
+    collected = store_.Collect(UnixNow(), options_.retention_seconds);
+  }
+  if (collected.jobs > 0 || collected.datasets > 0) {
+    spdlog::log(notice_, "collected {} and {} past the retention of {} s",
+                Counted(collected.jobs, "ended job"), Counted(collected.datasets, "unused dataset"),
+                options_.retention_seconds);
   }
 }
 

@@ -4,6 +4,7 @@
 #include <zmq.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <set>
@@ -20,12 +21,20 @@ struct CoordinatorOptions {
   // TCP (then bind only to trusted interfaces; 127.0.0.1 is the default).
   std::string curve_secret_key;
   std::set<std::string> client_keys, worker_keys;
+  // Clients that see every job (also among client_keys). Any other sees only the jobs its key
+  // submitted; with CURVE off every client is the same owner.
+  std::set<std::string> admin_keys;
 
   std::size_t max_message_bytes = std::size_t{256} << 20;
   std::size_t max_dataset_bytes = std::size_t{256} << 20;
   std::size_t max_queued_jobs = 10000;  // jobs queued or running
   std::size_t max_running_jobs = 8;     // jobs whose threads run at once
   std::size_t max_watchers = 1000;
+  // Bytes a client may keep stored (its datasets and its jobs' results); 0: no limit.
+  std::uint64_t client_quota_bytes = 0;
+  // Ended jobs (with their results) are dropped this long after they ended, and datasets no job
+  // reads this long after they were last uploaded; 0: everything is kept.
+  double retention_seconds = 0;
   double heartbeat_seconds = 1.0;
   int liveness = 3;                   // heartbeats missed before a worker counts as gone
   double task_timeout_seconds = 600;  // a task not answered by then is given to another worker

@@ -2,11 +2,13 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "common/protocol/curve_keys.h"
+#include "common/protocol/zmq_io.h"
 #include "common/util/error.h"
 #include "common/util/program_options.h"
 #include "common/util/stop_signals.h"
@@ -16,8 +18,8 @@ int main(int argc, char** argv) {
   evoslam::StopSignals signals;  // first, so every thread inherits the blocked signals
   evoslam::CoordinatorOptions options;
   std::string curve_secret, log_level = "info";
-  std::vector<std::filesystem::path> client_keys, worker_keys;
-  double max_message_mb = 256, max_dataset_mb = 256;
+  std::vector<std::filesystem::path> client_keys, worker_keys, admin_keys;
+  double max_message_mb = 256, max_dataset_mb = 256, client_quota_mb = 10240, retention_hours = 720;
 
   CLI::App app{"evoslam-coordinator: holds jobs, hands their work to evoslam-worker processes"};
   app.add_option("--clients", options.clients_endpoint, "endpoint clients connect to")
@@ -33,6 +35,17 @@ int main(int argc, char** argv) {
                  "public keys (.pub files or folders of them) of the clients to accept");
   app.add_option("--worker-keys", worker_keys,
                  "public keys (.pub files or folders of them) of the workers to accept");
+  app.add_option("--admin-keys", admin_keys,
+                 "public keys (.pub files or folders of them) of clients that see every job");
+  app.add_option("--client-quota-mb", client_quota_mb,
+                 "bytes a client may keep stored (its datasets and results), MiB; 0: no limit")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e9));
+  app.add_option("--retention-hours", retention_hours,
+                 "ended jobs and datasets no job reads are dropped this long after they ended or "
+                 "were uploaded; 0: kept for ever")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e7));
   app.add_option("--max-message-mb", max_message_mb, "largest message accepted, MiB")
       ->capture_default_str()
       ->check(CLI::Range(0.001, 2000.0));
@@ -60,11 +73,17 @@ int main(int argc, char** argv) {
          "least seconds between two saved checkpoints of a job (0: at every migration epoch)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1e6));
+  bool insecure = false;
+  app.add_flag("--insecure", insecure,
+               "listen on addresses other hosts reach without CURVE (anyone who reaches them "
+               "may submit, list and cancel jobs, or work as a worker)");
   evoslam::AddLogLevelOption(app, log_level);
   if (const auto status = evoslam::ParseProgramOptions(app, argc, argv, log_level)) return *status;
   try {
     options.max_message_bytes = static_cast<std::size_t>(max_message_mb * (1 << 20));
     options.max_dataset_bytes = static_cast<std::size_t>(max_dataset_mb * (1 << 20));
+    options.client_quota_bytes = static_cast<std::uint64_t>(client_quota_mb * (1 << 20));
+    options.retention_seconds = retention_hours * 3600;
     if (!curve_secret.empty()) {
       options.curve_secret_key = evoslam::ReadCurveKey(curve_secret);
       if (client_keys.empty() || worker_keys.empty()) {
@@ -72,8 +91,26 @@ int main(int argc, char** argv) {
       }
       options.client_keys = evoslam::ReadPublicKeys(client_keys);
       options.worker_keys = evoslam::ReadPublicKeys(worker_keys);
-    } else if (!client_keys.empty() || !worker_keys.empty()) {
-      throw evoslam::Error("--client-keys and --worker-keys need --curve-secret-key");
+      if (!admin_keys.empty()) options.admin_keys = evoslam::ReadPublicKeys(admin_keys);
+    } else if (!client_keys.empty() || !worker_keys.empty() || !admin_keys.empty()) {
+      throw evoslam::Error("--client-keys, --worker-keys and --admin-keys need --curve-secret-key");
+    }
+    if (curve_secret.empty()) {
+      for (const std::string& endpoint : {options.clients_endpoint, options.workers_endpoint}) {
+        if (evoslam::IsLoopbackEndpoint(endpoint)) continue;
+        if (!insecure) {
+          spdlog::error(
+              "refusing to listen on {} without CURVE: anyone who reaches it could submit, read "
+              "and cancel jobs or pose as a worker; give --curve-secret-key (docs/service.md, "
+              "Security), or --insecure to run so on a network you trust",
+              endpoint);
+          return 2;
+        }
+        spdlog::warn(
+            "listening on {} without CURVE (--insecure): anyone who reaches it may "
+            "submit, read and cancel jobs, or pose as a worker",
+            endpoint);
+      }
     }
     zmq::context_t context;
     evoslam::Coordinator coordinator(context, options);

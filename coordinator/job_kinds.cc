@@ -3,6 +3,7 @@
 #include <string>
 
 #include "common/localization/localize_params.h"
+#include "common/service/job_inputs.h"
 #include "common/slam/methods/slam_methods.h"
 #include "common/util/error.h"
 #include "coordinator/localize_job.h"
@@ -61,6 +62,12 @@ std::vector<std::pair<const char*, proto::DatasetRef>> JobDatasets(const proto::
   if (!spec.map_image().sha256().empty()) refs.emplace_back("map image", spec.map_image());
   if (!spec.relations().sha256().empty()) refs.emplace_back("relations", spec.relations());
   return refs;
+}
+
+void CheckJobFileReferences(const proto::JobSpec& spec,
+                            const std::function<std::string(const proto::DatasetRef&)>& content) {
+  if (spec.kind() != proto::JOB_KIND_LOCALIZE || spec.localize().map_from_log()) return;
+  if (IsMapYaml(spec.map())) CheckMapImageIsOwn(content(spec.map()), spec.map(), spec.map_image());
 }
 
 std::vector<proto::ResultFile> RunJobOfKind(const JobContext& context) {

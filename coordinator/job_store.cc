@@ -1,6 +1,10 @@
 #include "coordinator/job_store.h"
 
-#include <charconv>
+#include <sodium.h>
+
+#include <array>
+#include <set>
+#include <utility>
 
 #include "common/util/error.h"
 
@@ -8,11 +12,12 @@ namespace evoslam {
 namespace {
 
 // 2: jobs.step, the step under way inside a running job (a serialised JobStep; empty: none).
-constexpr std::int64_t kSchemaVersion = 2;
+// 3: jobs.public_id (the id clients see) and jobs.owner; dataset_owners.
+constexpr std::int64_t kSchemaVersion = 3;
 
 proto::JobStatus StatusFrom(Statement& row) {
   proto::JobStatus s;
-  s.set_job_id("job-" + std::to_string(row.Int(0)));
+  s.set_job_id(row.Text(0));
   s.set_kind(static_cast<proto::JobKind>(row.Int(1)));
   s.set_state(static_cast<proto::JobState>(row.Int(2)));
   s.set_phase(row.Text(3));
@@ -30,11 +35,39 @@ proto::JobStatus StatusFrom(Statement& row) {
 }
 
 constexpr const char* kStatusColumns =
-    "id, kind, state, phase, done, total, evaluations, error, submitted, finished, step";
+    "public_id, kind, state, phase, done, total, evaluations, error, submitted, finished, step";
+
+constexpr const char* kFinishedStates = "(3, 4, 5)";  // SUCCEEDED, FAILED, CANCELLED
+static_assert(proto::JOB_STATE_SUCCEEDED == 3 && proto::JOB_STATE_FAILED == 4 &&
+              proto::JOB_STATE_CANCELLED == 5);
+
+// 128 bits from the system's CSPRNG: a job id tells nothing of another's.
+std::string NewJobId() {
+  std::array<unsigned char, 16> bytes{};
+  randombytes_buf(bytes.data(), bytes.size());
+  std::string id = "job-";
+  for (const unsigned char b : bytes) {
+    constexpr const char* kDigits = "0123456789abcdef";
+    id += kDigits[b >> 4];
+    id += kDigits[b & 15];
+  }
+  return id;
+}
+
+// The hashes of the datasets a job's spec reads.
+std::vector<std::string> SpecDatasets(const proto::JobSpec& spec) {
+  std::vector<std::string> hashes;
+  for (const proto::DatasetRef* ref :
+       {&spec.log(), &spec.map(), &spec.map_image(), &spec.relations()}) {
+    if (!ref->sha256().empty()) hashes.push_back(ref->sha256());
+  }
+  return hashes;
+}
 
 }  // namespace
 
 JobStore::JobStore(const std::filesystem::path& path) : db_(path) {
+  if (sodium_init() < 0) throw Error("libsodium cannot be initialised");
   db_.Transaction([&] {
     db_.Execute(
         "CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value INTEGER NOT NULL);"
@@ -45,44 +78,95 @@ JobStore::JobStore(const std::filesystem::path& path) : db_(path) {
         "  phase TEXT NOT NULL DEFAULT '', done INTEGER NOT NULL DEFAULT 0,"
         "  total INTEGER NOT NULL DEFAULT 0, evaluations INTEGER NOT NULL DEFAULT 0,"
         "  error TEXT NOT NULL DEFAULT '', submitted REAL NOT NULL, finished REAL NOT NULL"
-        "  DEFAULT 0, step BLOB NOT NULL DEFAULT x'');"
+        "  DEFAULT 0, step BLOB NOT NULL DEFAULT x'', public_id TEXT NOT NULL DEFAULT '',"
+        "  owner TEXT NOT NULL DEFAULT '');"
+        "CREATE TABLE IF NOT EXISTS dataset_owners (sha256 TEXT NOT NULL, owner TEXT NOT NULL,"
+        "  size INTEGER NOT NULL, uploaded REAL NOT NULL, PRIMARY KEY (sha256, owner));"
         "CREATE TABLE IF NOT EXISTS checkpoints (job INTEGER NOT NULL REFERENCES jobs(id),"
         "  island INTEGER NOT NULL, epoch INTEGER NOT NULL, state BLOB NOT NULL,"
         "  PRIMARY KEY (job, island));"
         "CREATE TABLE IF NOT EXISTS results (job INTEGER NOT NULL REFERENCES jobs(id),"
         "  name TEXT NOT NULL, content BLOB NOT NULL, PRIMARY KEY (job, name));"
-        "INSERT OR IGNORE INTO meta VALUES ('schema', 2);");
+        "INSERT OR IGNORE INTO meta VALUES ('schema', 3);");
     Statement schema = db_.Prepare("SELECT value FROM meta WHERE key = 'schema'");
-    const std::int64_t version = schema.Step() ? schema.Int(0) : 0;
+    std::int64_t version = schema.Step() ? schema.Int(0) : 0;
     if (version == 1) {
       // Version 1 lacks only the step: its jobs have none.
       db_.Execute(
           "ALTER TABLE jobs ADD COLUMN step BLOB NOT NULL DEFAULT x'';"
           "UPDATE meta SET value = 2 WHERE key = 'schema';");
+      version = 2;
+    }
+    if (version == 2) {
+      // Version 2's jobs keep the ids they were given; they and its datasets belong to "", the
+      // owner of every client without CURVE.
+      db_.Execute(
+          "ALTER TABLE jobs ADD COLUMN public_id TEXT NOT NULL DEFAULT '';"
+          "ALTER TABLE jobs ADD COLUMN owner TEXT NOT NULL DEFAULT '';"
+          "UPDATE jobs SET public_id = 'job-' || id;"
+          "INSERT OR IGNORE INTO dataset_owners SELECT sha256, '', length(content), 0"
+          "  FROM datasets;"
+          "UPDATE meta SET value = 3 WHERE key = 'schema';");
     } else if (version != kSchemaVersion) {
       throw Error("database " + path.string() + " has schema version " + std::to_string(version) +
                   ", this build reads version " + std::to_string(kSchemaVersion));
     }
+    db_.Execute("CREATE UNIQUE INDEX IF NOT EXISTS jobs_by_public_id ON jobs (public_id);");
   });
 }
 
-std::int64_t JobStore::JobNumber(const std::string& job_id) const {
-  std::int64_t number = 0;
-  const char* first = job_id.data() + 4;
-  const char* last = job_id.data() + job_id.size();
-  if (job_id.size() < 5 || job_id.compare(0, 4, "job-") != 0 ||
-      std::from_chars(first, last, number).ptr != last || number <= 0)
-    return -1;
-  return number;
+std::int64_t JobStore::JobNumber(const std::string& job_id) {
+  if (job_id.empty()) return -1;
+  Statement q = db_.Prepare("SELECT id FROM jobs WHERE public_id = ?1");
+  q.Bind(1, job_id);
+  return q.Step() ? q.Int(0) : -1;
 }
 
 bool JobStore::PutDataset(const std::string& sha256, const std::string& name,
-                          const std::string& content) {
-  if (HasDataset(sha256)) return false;
-  Statement insert =
-      db_.Prepare("INSERT INTO datasets (sha256, name, content) VALUES (?1, ?2, ?3)");
-  insert.Bind(1, sha256).Bind(2, name).BindBlob(3, content).Run();
-  return true;
+                          const std::string& content, const std::string& owner, double now_unix_s) {
+  bool added = false;
+  db_.Transaction([&] {
+    added = !HasDataset(sha256);
+    if (added) {
+      Statement insert =
+          db_.Prepare("INSERT INTO datasets (sha256, name, content) VALUES (?1, ?2, ?3)");
+      insert.Bind(1, sha256).Bind(2, name).BindBlob(3, content).Run();
+    }
+    Statement own = db_.Prepare(
+        "INSERT INTO dataset_owners (sha256, owner, size, uploaded) VALUES (?1, ?2, ?3, ?4)"
+        " ON CONFLICT (sha256, owner) DO UPDATE SET uploaded = excluded.uploaded");
+    own.Bind(1, sha256)
+        .Bind(2, owner)
+        .Bind(3, static_cast<std::int64_t>(content.size()))
+        .Bind(4, now_unix_s)
+        .Run();
+  });
+  return added;
+}
+
+bool JobStore::OwnsDataset(const std::string& sha256, const std::string& owner) {
+  Statement q = db_.Prepare("SELECT 1 FROM dataset_owners WHERE sha256 = ?1 AND owner = ?2");
+  q.Bind(1, sha256).Bind(2, owner);
+  return q.Step();
+}
+
+bool JobStore::ClaimDataset(const std::string& sha256, const std::string& owner,
+                            double now_unix_s) {
+  Statement update =
+      db_.Prepare("UPDATE dataset_owners SET uploaded = ?3 WHERE sha256 = ?1 AND owner = ?2");
+  update.Bind(1, sha256).Bind(2, owner).Bind(3, now_unix_s).Run();
+  return db_.Changes() > 0;
+}
+
+std::uint64_t JobStore::StoredBytes(const std::string& owner) {
+  Statement datasets =
+      db_.Prepare("SELECT COALESCE(SUM(size), 0) FROM dataset_owners WHERE owner = ?1");
+  datasets.Bind(1, owner).Step();
+  Statement results = db_.Prepare(
+      "SELECT COALESCE(SUM(length(r.content)), 0) FROM results r JOIN jobs j ON r.job = j.id"
+      " WHERE j.owner = ?1");
+  results.Bind(1, owner).Step();
+  return static_cast<std::uint64_t>(datasets.Int(0) + results.Int(0));
 }
 
 bool JobStore::HasDataset(const std::string& sha256) {
@@ -98,15 +182,20 @@ std::optional<std::string> JobStore::Dataset(const std::string& sha256) {
   return q.Text(0);
 }
 
-std::string JobStore::AddJob(const proto::JobSpec& spec, double now_unix_s) {
-  Statement insert =
-      db_.Prepare("INSERT INTO jobs (kind, spec, state, submitted) VALUES (?1, ?2, ?3, ?4)");
+std::string JobStore::AddJob(const proto::JobSpec& spec, const std::string& owner,
+                             double now_unix_s) {
+  const std::string id = NewJobId();
+  Statement insert = db_.Prepare(
+      "INSERT INTO jobs (kind, spec, state, submitted, public_id, owner)"
+      " VALUES (?1, ?2, ?3, ?4, ?5, ?6)");
   insert.Bind(1, static_cast<std::int64_t>(spec.kind()))
       .BindBlob(2, spec.SerializeAsString())
       .Bind(3, static_cast<std::int64_t>(proto::JOB_STATE_QUEUED))
       .Bind(4, now_unix_s)
+      .Bind(5, id)
+      .Bind(6, owner)
       .Run();
-  return "job-" + std::to_string(db_.LastInsertId());
+  return id;
 }
 
 std::optional<proto::JobSpec> JobStore::Spec(const std::string& job_id) {
@@ -126,19 +215,28 @@ std::optional<proto::JobStatus> JobStore::Status(const std::string& job_id) {
   return StatusFrom(q);
 }
 
-std::vector<proto::JobStatus> JobStore::Jobs() {
-  Statement q = db_.Prepare(std::string("SELECT ") + kStatusColumns + " FROM jobs ORDER BY id");
+std::optional<std::string> JobStore::Owner(const std::string& job_id) {
+  Statement q = db_.Prepare("SELECT owner FROM jobs WHERE id = ?1");
+  q.Bind(1, JobNumber(job_id));
+  if (!q.Step()) return std::nullopt;
+  return q.Text(0);
+}
+
+std::vector<proto::JobStatus> JobStore::Jobs(const std::optional<std::string>& owner) {
+  Statement q = db_.Prepare(std::string("SELECT ") + kStatusColumns +
+                            " FROM jobs WHERE ?1 IS NULL OR owner = ?1 ORDER BY id");
+  if (owner) q.Bind(1, *owner);
   std::vector<proto::JobStatus> jobs;
   while (q.Step()) jobs.push_back(StatusFrom(q));
   return jobs;
 }
 
 std::vector<std::string> JobStore::Unfinished() {
-  Statement q = db_.Prepare("SELECT id FROM jobs WHERE state IN (?1, ?2) ORDER BY id");
+  Statement q = db_.Prepare("SELECT public_id FROM jobs WHERE state IN (?1, ?2) ORDER BY id");
   q.Bind(1, static_cast<std::int64_t>(proto::JOB_STATE_QUEUED))
       .Bind(2, static_cast<std::int64_t>(proto::JOB_STATE_RUNNING));
   std::vector<std::string> ids;
-  while (q.Step()) ids.push_back("job-" + std::to_string(q.Int(0)));
+  while (q.Step()) ids.push_back(q.Text(0));
   return ids;
 }
 
@@ -235,6 +333,57 @@ std::vector<proto::ResultFile> JobStore::Result(const std::string& job_id) {
     files.push_back(std::move(f));
   }
   return files;
+}
+
+JobStore::Collected JobStore::Collect(double now_unix_s, double retention_s) {
+  const double before = now_unix_s - retention_s;
+  Collected collected;
+  db_.Transaction([&] {
+    const std::string ended =
+        std::string("SELECT id FROM jobs WHERE state IN ") + kFinishedStates + " AND finished < ?1";
+    for (const char* table : {"results", "checkpoints"}) {
+      db_.Prepare(std::string("DELETE FROM ") + table + " WHERE job IN (" + ended + ")")
+          .Bind(1, before)
+          .Run();
+    }
+    db_.Prepare(std::string("DELETE FROM jobs WHERE state IN ") + kFinishedStates +
+                " AND finished < ?1")
+        .Bind(1, before)
+        .Run();
+    collected.jobs = static_cast<std::size_t>(db_.Changes());
+
+    std::set<std::pair<std::string, std::string>> read_by;  // (owner, sha256) a job reads
+    std::set<std::string> read;
+    Statement jobs = db_.Prepare("SELECT owner, spec FROM jobs");
+    while (jobs.Step()) {
+      proto::JobSpec spec;
+      if (!spec.ParseFromString(jobs.Text(1))) throw Error("database: a job's spec is corrupt");
+      for (std::string& sha : SpecDatasets(spec)) {
+        read.insert(sha);
+        read_by.emplace(jobs.Text(0), std::move(sha));
+      }
+    }
+    std::vector<std::pair<std::string, std::string>> unheld;
+    Statement stale = db_.Prepare("SELECT owner, sha256 FROM dataset_owners WHERE uploaded < ?1");
+    stale.Bind(1, before);
+    while (stale.Step()) {
+      std::pair<std::string, std::string> held{stale.Text(0), stale.Text(1)};
+      if (!read_by.contains(held)) unheld.push_back(std::move(held));
+    }
+    Statement drop = db_.Prepare("DELETE FROM dataset_owners WHERE owner = ?1 AND sha256 = ?2");
+    for (const auto& [owner, sha] : unheld) drop.Bind(1, owner).Bind(2, sha).Run();
+
+    std::vector<std::string> orphans;
+    Statement unowned = db_.Prepare(
+        "SELECT sha256 FROM datasets WHERE sha256 NOT IN (SELECT sha256 FROM dataset_owners)");
+    while (unowned.Step()) {
+      if (!read.contains(unowned.Text(0))) orphans.push_back(unowned.Text(0));
+    }
+    Statement remove = db_.Prepare("DELETE FROM datasets WHERE sha256 = ?1");
+    for (const std::string& sha : orphans) remove.Bind(1, sha).Run();
+    collected.datasets = orphans.size();
+  });
+  return collected;
 }
 
 }  // namespace evoslam

@@ -20,17 +20,29 @@ class JobStore {
  public:
   explicit JobStore(const std::filesystem::path& path);
 
-  // Datasets, by the SHA-256 of their bytes (the caller has checked it). PutDataset returns false
-  // when the dataset was already stored.
-  bool PutDataset(const std::string& sha256, const std::string& name, const std::string& content);
-  bool HasDataset(const std::string& sha256);
+  // Datasets, by the SHA-256 of their bytes (the caller has checked it), each held by the owners
+  // that uploaded it (an owner is a client's CURVE public key; "" with CURVE off). PutDataset
+  // records `owner` as holding it since `now_unix_s` and returns false when the bytes were
+  // already stored.
+  bool PutDataset(const std::string& sha256, const std::string& name, const std::string& content,
+                  const std::string& owner, double now_unix_s);
+  bool HasDataset(const std::string& sha256);  // held by anyone
+  bool OwnsDataset(const std::string& sha256, const std::string& owner);
+  // Whether `owner` holds the dataset; if so it counts as uploaded again at `now_unix_s`, so that
+  // the job it is about to be submitted with finds it.
+  bool ClaimDataset(const std::string& sha256, const std::string& owner, double now_unix_s);
   std::optional<std::string> Dataset(const std::string& sha256);
+  // The bytes `owner` keeps here: the datasets it holds and its jobs' results.
+  std::uint64_t StoredBytes(const std::string& owner);
 
-  // A new job in state QUEUED; returns its id ("job-1", "job-2", ...).
-  std::string AddJob(const proto::JobSpec& spec, double now_unix_s);
+  // A new job of `owner` in state QUEUED; returns its id, "job-" and 32 random hex digits, which
+  // nobody can guess.
+  std::string AddJob(const proto::JobSpec& spec, const std::string& owner, double now_unix_s);
   std::optional<proto::JobSpec> Spec(const std::string& job_id);
   std::optional<proto::JobStatus> Status(const std::string& job_id);
-  std::vector<proto::JobStatus> Jobs();
+  std::optional<std::string> Owner(const std::string& job_id);
+  // Every job, or `owner`'s alone, in the order they were submitted.
+  std::vector<proto::JobStatus> Jobs(const std::optional<std::string>& owner = std::nullopt);
   // Jobs that were queued or running when the coordinator last stopped, oldest first.
   std::vector<std::string> Unfinished();
 
@@ -60,9 +72,19 @@ class JobStore {
 
   std::vector<proto::ResultFile> Result(const std::string& job_id);
 
+  // Drops what has been kept past `retention_s`: jobs that ended before `now_unix_s -
+  // retention_s`, with their results, then each owner's datasets that none of its jobs reads and
+  // that it last uploaded before then.
+  struct Collected {
+    std::size_t jobs = 0;
+    std::size_t datasets = 0;  // whose bytes were dropped (no owner holds them any more)
+  };
+  Collected Collect(double now_unix_s, double retention_s);
+
  private:
   void SaveResult(const std::string& job_id, const std::vector<proto::ResultFile>& files);
-  std::int64_t JobNumber(const std::string& job_id) const;
+  // The row of a job id; -1 when there is none.
+  std::int64_t JobNumber(const std::string& job_id);
 
   Database db_;
 };

@@ -6,6 +6,7 @@
 
 #include <csignal>
 #include <fstream>
+#include <set>
 
 #include "common/util/error.h"
 #include "common/util/temp_dir.h"
@@ -39,22 +40,23 @@ class JobStoreTest : public ::testing::Test {
 };
 
 TEST_F(JobStoreTest, JobsKeepTheirSpecStateAndOrderAcrossReopening) {
+  std::string job1, job2;
   {
     JobStore store(Db());
-    EXPECT_EQ(store.AddJob(LocalizeSpec(1), 100.0), "job-1");
-    EXPECT_EQ(store.AddJob(LocalizeSpec(2), 101.0), "job-2");
-    store.SetRunning("job-1", Progress("localize", 5, 40, 1234));
-    EXPECT_TRUE(store.Finish("job-2", proto::JOB_STATE_FAILED, "scan 3: no map", 102.0));
+    job1 = store.AddJob(LocalizeSpec(1), "", 100.0);
+    job2 = store.AddJob(LocalizeSpec(2), "", 101.0);
+    store.SetRunning(job1, Progress("localize", 5, 40, 1234));
+    EXPECT_TRUE(store.Finish(job2, proto::JOB_STATE_FAILED, "scan 3: no map", 102.0));
     // A job ends once: neither a later success nor progress overrides how it ended.
-    EXPECT_FALSE(store.Finish("job-2", proto::JOB_STATE_CANCELLED, "", 103.0));
-    EXPECT_FALSE(store.Succeed("job-2", {}, 103.0));
-    store.SetRunning("job-2", Progress("localize", 1, 2, 3));
+    EXPECT_FALSE(store.Finish(job2, proto::JOB_STATE_CANCELLED, "", 103.0));
+    EXPECT_FALSE(store.Succeed(job2, {}, 103.0));
+    store.SetRunning(job2, Progress("localize", 1, 2, 3));
     EXPECT_EQ(store.CountUnfinished(), 1u);
   }
   JobStore store(Db());
   const std::vector<proto::JobStatus> jobs = store.Jobs();
   ASSERT_EQ(jobs.size(), 2u);
-  EXPECT_EQ(jobs[0].job_id(), "job-1");
+  EXPECT_EQ(jobs[0].job_id(), job1);
   EXPECT_EQ(jobs[0].state(), proto::JOB_STATE_RUNNING);
   EXPECT_EQ(jobs[0].phase(), "localize");
   EXPECT_EQ(jobs[0].done(), 5u);
@@ -64,9 +66,82 @@ TEST_F(JobStoreTest, JobsKeepTheirSpecStateAndOrderAcrossReopening) {
   EXPECT_EQ(jobs[0].submitted_unix_s(), 100.0);
   EXPECT_EQ(jobs[1].state(), proto::JOB_STATE_FAILED);
   EXPECT_EQ(jobs[1].error(), "scan 3: no map");
-  EXPECT_EQ(store.Spec("job-2")->seed(), 2u);
-  EXPECT_EQ(store.Unfinished(), std::vector<std::string>{"job-1"});
-  EXPECT_EQ(store.AddJob(LocalizeSpec(3), 103.0), "job-3");  // ids are never reused
+  EXPECT_EQ(store.Spec(job2)->seed(), 2u);
+  EXPECT_EQ(store.Unfinished(), std::vector<std::string>{job1});
+}
+
+// Job ids are random: nobody can guess another's job, and none is ever given twice.
+TEST_F(JobStoreTest, JobIdsAreRandomAndReadable) {
+  JobStore store(Db());
+  std::set<std::string> ids;
+  for (int i = 0; i < 200; ++i) {
+    const std::string id = store.AddJob(LocalizeSpec(1), "", 1.0);
+    ASSERT_EQ(id.size(), 4u + 32u) << id;
+    EXPECT_EQ(id.substr(0, 4), "job-");
+    EXPECT_EQ(id.find_first_not_of("0123456789abcdef", 4), std::string::npos) << id;
+    EXPECT_TRUE(ids.insert(id).second) << id;
+  }
+}
+
+// A job belongs to the key that submitted it; a listing for that key shows its jobs alone.
+TEST_F(JobStoreTest, JobsAndDatasetsBelongToTheirOwner) {
+  JobStore store(Db());
+  const std::string alice = store.AddJob(LocalizeSpec(1), "alice-key", 1.0);
+  const std::string bob = store.AddJob(LocalizeSpec(2), "bob-key", 2.0);
+  EXPECT_EQ(store.Owner(alice), "alice-key");
+  EXPECT_EQ(store.Owner(bob), "bob-key");
+  EXPECT_FALSE(store.Owner("job-nobody"));
+  ASSERT_EQ(store.Jobs("alice-key").size(), 1u);
+  EXPECT_EQ(store.Jobs("alice-key")[0].job_id(), alice);
+  EXPECT_TRUE(store.Jobs("carol-key").empty());
+  EXPECT_EQ(store.Jobs().size(), 2u);
+
+  const std::string sha(64, 'c');
+  EXPECT_TRUE(store.PutDataset(sha, "intel.clf", "12345", "alice-key", 1.0));
+  EXPECT_TRUE(store.OwnsDataset(sha, "alice-key"));
+  EXPECT_FALSE(store.OwnsDataset(sha, "bob-key"));
+  EXPECT_FALSE(store.ClaimDataset(sha, "bob-key", 2.0)) << "only the bytes prove possession";
+  EXPECT_FALSE(store.PutDataset(sha, "mine.clf", "12345", "bob-key", 2.0));  // stored once
+  EXPECT_TRUE(store.OwnsDataset(sha, "bob-key"));
+  EXPECT_EQ(store.StoredBytes("alice-key"), 5u);
+  EXPECT_EQ(store.StoredBytes("bob-key"), 5u);
+  proto::ResultFile report;
+  report.set_name("report.json");
+  report.set_content("{}");
+  EXPECT_TRUE(store.Succeed(bob, {report}, 3.0));
+  EXPECT_EQ(store.StoredBytes("bob-key"), 7u);
+  EXPECT_EQ(store.StoredBytes("carol-key"), 0u);
+}
+
+// Ended jobs go once the retention has passed, and with them what they alone read; a dataset a
+// job still reads, or uploaded within the retention, stays.
+TEST_F(JobStoreTest, CollectDropsWhatOutlivedTheRetention) {
+  JobStore store(Db());
+  const std::string log(64, 'a'), map(64, 'e'), fresh(64, 'c'), unused(64, 'd');
+  for (const std::string& sha : {log, map, unused}) store.PutDataset(sha, "x", "bytes", "k", 10.0);
+  store.PutDataset(fresh, "x", "bytes", "k", 95.0);
+  proto::JobSpec reads_log = LocalizeSpec(1);
+  reads_log.mutable_log()->set_sha256(log);
+  proto::JobSpec reads_map = LocalizeSpec(2);
+  reads_map.mutable_log()->set_sha256(map);
+  const std::string running = store.AddJob(reads_log, "k", 10.0);
+  const std::string ended = store.AddJob(reads_map, "k", 10.0);
+  const std::string recent = store.AddJob(LocalizeSpec(3), "k", 10.0);
+  EXPECT_TRUE(store.Succeed(ended, {}, 20.0));
+  EXPECT_TRUE(store.Finish(recent, proto::JOB_STATE_FAILED, "x", 95.0));
+  store.SetRunning(running, Progress("localize", 1, 2, 3));
+
+  const JobStore::Collected collected = store.Collect(100.0, 50.0);
+  EXPECT_EQ(collected.jobs, 1u);
+  EXPECT_EQ(collected.datasets, 2u);  // map (its job went) and unused
+  EXPECT_FALSE(store.Status(ended));
+  EXPECT_TRUE(store.Status(running));
+  EXPECT_TRUE(store.Status(recent));
+  EXPECT_TRUE(store.HasDataset(log));
+  EXPECT_TRUE(store.HasDataset(fresh));
+  EXPECT_FALSE(store.HasDataset(map));
+  EXPECT_FALSE(store.HasDataset(unused));
+  EXPECT_EQ(store.Collect(100.0, 50.0).datasets, 0u);
 }
 
 // What a client reads of a running job (its step too) is what it read before a restart; a step
@@ -76,26 +151,29 @@ TEST_F(JobStoreTest, AJobsStepIsKeptUntilItEnds) {
   searching.mutable_step()->set_name("global search");
   searching.mutable_step()->set_done(30);
   searching.mutable_step()->set_total(100);
+  std::string job;
   {
     JobStore store(Db());
-    store.SetRunning(store.AddJob(LocalizeSpec(1), 1.0), searching);
+    job = store.AddJob(LocalizeSpec(1), "", 1.0);
+    store.SetRunning(job, searching);
   }
   JobStore store(Db());
-  proto::JobStatus read = *store.Status("job-1");
+  proto::JobStatus read = *store.Status(job);
   EXPECT_EQ(read.phase(), "slam");
   EXPECT_EQ(read.done(), 450u);
   ASSERT_TRUE(read.has_step());
   EXPECT_EQ(read.step().name(), "global search");
   EXPECT_EQ(read.step().done(), 30u);
   EXPECT_EQ(read.step().total(), 100u);
-  store.SetRunning("job-1", Progress("slam", 451, 910, 80));
-  read = *store.Status("job-1");
+  store.SetRunning(job, Progress("slam", 451, 910, 80));
+  read = *store.Status(job);
   EXPECT_EQ(read.done(), 451u);
   EXPECT_FALSE(read.has_step());
 }
 
-// A database of schema version 1 (no step) opens as version 2, its jobs without a step.
-TEST_F(JobStoreTest, AVersion1DatabaseGainsTheStep) {
+// A database of schema version 1 (no step) opens as version 3, its jobs without a step, keeping
+// their ids, and owned by "", the owner of every client without CURVE.
+TEST_F(JobStoreTest, AVersion1DatabaseGainsTheStepAndOwners) {
   {
     Database v1(Db());
     v1.Execute(
@@ -108,7 +186,11 @@ TEST_F(JobStoreTest, AVersion1DatabaseGainsTheStep) {
         "  DEFAULT 0);"
         "INSERT INTO meta VALUES ('schema', 1);"
         "INSERT INTO jobs (kind, spec, state, phase, done, total, submitted)"
-        "  VALUES (1, x'', 2, 'localize', 5, 40, 100.0);");
+        "  VALUES (1, x'', 2, 'localize', 5, 40, 100.0);"
+        "CREATE TABLE datasets (sha256 TEXT PRIMARY KEY, name TEXT NOT NULL,"
+        "  content BLOB NOT NULL);"
+        "INSERT INTO datasets VALUES ('" +
+        std::string(64, 'e') + "', 'old.clf', x'0102');");
   }
   {
     JobStore store(Db());
@@ -120,27 +202,32 @@ TEST_F(JobStoreTest, AVersion1DatabaseGainsTheStep) {
     searching.mutable_step()->set_name("global search");
     store.SetRunning("job-1", searching);
   }
-  JobStore store(Db());  // now version 2
+  JobStore store(Db());  // now version 3
   EXPECT_EQ(store.Status("job-1")->step().name(), "global search");
+  EXPECT_EQ(store.Owner("job-1"), "");
+  EXPECT_TRUE(store.OwnsDataset(std::string(64, 'e'), ""));
+  EXPECT_EQ(store.StoredBytes(""), 2u);
   Database db(Db());
   Statement schema = db.Prepare("SELECT value FROM meta WHERE key = 'schema'");
   ASSERT_TRUE(schema.Step());
-  EXPECT_EQ(schema.Int(0), 2);
+  EXPECT_EQ(schema.Int(0), 3);
 }
 
 TEST_F(JobStoreTest, UnknownAndMalformedJobIdsFindNothing) {
   JobStore store(Db());
-  store.AddJob(LocalizeSpec(1), 1.0);
-  for (const char* id : {"job-2", "job-0", "job-", "job-1x", "1", "'; DROP TABLE jobs; --", ""}) {
+  const std::string job = store.AddJob(LocalizeSpec(1), "", 1.0);
+  for (const std::string& id : {std::string("job-1"), std::string("job-0"), std::string("job-"),
+                                job + "x", job.substr(0, 20), std::string("1"),
+                                std::string("'; DROP TABLE jobs; --"), std::string()}) {
     EXPECT_FALSE(store.Status(id)) << id;
     EXPECT_FALSE(store.Spec(id)) << id;
   }
-  EXPECT_TRUE(store.Status("job-1"));
+  EXPECT_TRUE(store.Status(job));
 }
 
 TEST_F(JobStoreTest, EachIslandKeepsItsLatestCheckpoint) {
   JobStore store(Db());
-  const std::string job = store.AddJob(LocalizeSpec(1), 1.0);
+  const std::string job = store.AddJob(LocalizeSpec(1), "", 1.0);
   store.SaveCheckpoint(job, 0, 1, "island 0 epoch 1");
   store.SaveCheckpoint(job, 1, 1, std::string("island 1\0epoch 1", 16));
   store.SaveCheckpoint(job, 0, 2, "island 0 epoch 2");
@@ -149,7 +236,7 @@ TEST_F(JobStoreTest, EachIslandKeepsItsLatestCheckpoint) {
   EXPECT_EQ(checkpoints[0].epoch, 2u);
   EXPECT_EQ(checkpoints[0].bytes, "island 0 epoch 2");
   EXPECT_EQ(checkpoints[1].bytes, std::string("island 1\0epoch 1", 16));  // binary-safe
-  EXPECT_TRUE(store.Checkpoints(store.AddJob(LocalizeSpec(2), 2.0)).empty());
+  EXPECT_TRUE(store.Checkpoints(store.AddJob(LocalizeSpec(2), "", 2.0)).empty());
   // A job that ends keeps no checkpoint: it is never resumed.
   EXPECT_TRUE(store.Finish(job, proto::JOB_STATE_CANCELLED, "", 3.0));
   EXPECT_TRUE(store.Checkpoints(job).empty());
@@ -158,13 +245,13 @@ TEST_F(JobStoreTest, EachIslandKeepsItsLatestCheckpoint) {
 TEST_F(JobStoreTest, DatasetsAndResultsRoundTrip) {
   JobStore store(Db());
   const std::string content("CARMEN\0log", 10);
-  EXPECT_TRUE(store.PutDataset(std::string(64, 'c'), "intel.clf", content));
-  EXPECT_FALSE(store.PutDataset(std::string(64, 'c'), "intel.clf", content));
+  EXPECT_TRUE(store.PutDataset(std::string(64, 'c'), "intel.clf", content, "", 1.0));
+  EXPECT_FALSE(store.PutDataset(std::string(64, 'c'), "intel.clf", content, "", 1.0));
   EXPECT_TRUE(store.HasDataset(std::string(64, 'c')));
   EXPECT_EQ(store.Dataset(std::string(64, 'c')), content);
   EXPECT_FALSE(store.Dataset(std::string(64, 'd')));
 
-  const std::string job = store.AddJob(LocalizeSpec(1), 1.0);
+  const std::string job = store.AddJob(LocalizeSpec(1), "", 1.0);
   proto::ResultFile trajectory, report;
   trajectory.set_name("trajectory.txt");
   trajectory.set_content("0 0 0 0\n");
@@ -184,7 +271,8 @@ TEST_F(JobStoreTest, CommittedWorkSurvivesKillMinus9) {
   ASSERT_GE(child, 0);
   if (child == 0) {
     JobStore store(Db());
-    const std::string job = store.AddJob(LocalizeSpec(7), 1.0);
+    const std::string job = store.AddJob(LocalizeSpec(7), "", 1.0);
+    std::ofstream(Db().string() + ".id") << job;
     store.SetRunning(job, Progress("islands", 3, 10, 999));
     store.SaveCheckpoint(job, 2, 3, "epoch 3");
     raise(SIGKILL);
@@ -195,10 +283,12 @@ TEST_F(JobStoreTest, CommittedWorkSurvivesKillMinus9) {
   ASSERT_EQ(WTERMSIG(status), SIGKILL);
 
   JobStore store(Db());
-  EXPECT_EQ(store.Unfinished(), std::vector<std::string>{"job-1"});
-  EXPECT_EQ(store.Spec("job-1")->seed(), 7u);
-  EXPECT_EQ(store.Status("job-1")->done(), 3u);
-  const auto checkpoints = store.Checkpoints("job-1");
+  std::string job;
+  std::ifstream(Db().string() + ".id") >> job;
+  EXPECT_EQ(store.Unfinished(), std::vector<std::string>{job});
+  EXPECT_EQ(store.Spec(job)->seed(), 7u);
+  EXPECT_EQ(store.Status(job)->done(), 3u);
+  const auto checkpoints = store.Checkpoints(job);
   ASSERT_EQ(checkpoints.size(), 1u);
   EXPECT_EQ(checkpoints[0].bytes, "epoch 3");
 }

@@ -32,8 +32,11 @@ void ZapHandler::HandleOne() {
   const auto frames = ReceiveFrames(socket_);
   if (!frames) return;
   // version, request id, domain, address, identity, mechanism, credentials...
-  const auto reply = [&](const std::string& request_id, const char* code, const char* text) {
-    const std::vector<std::string> parts = {"1.0", request_id, code, text, "", ""};
+  // The User-Id of an accepted peer is its public key: the coordinator reads it off each message
+  // (zmq_msg_gets) to know whose request it is.
+  const auto reply = [&](const std::string& request_id, const char* code, const char* text,
+                         const std::string& user_id = {}) {
+    const std::vector<std::string> parts = {"1.0", request_id, code, text, user_id, ""};
     for (std::size_t i = 0; i < parts.size(); ++i) {
       socket_.send(zmq::buffer(parts[i]),
                    i + 1 < parts.size() ? zmq::send_flags::sndmore : zmq::send_flags::none);
@@ -61,7 +64,7 @@ void ZapHandler::HandleOne() {
     return;
   }
   spdlog::debug("accepted {} ({}) with key {}", address, domain, key);
-  reply(request_id, "200", "OK");
+  reply(request_id, "200", "OK", key);
 }
 
 }  // namespace evoslam

@@ -11,7 +11,8 @@ namespace evoslam {
 
 // ZeroMQ's authentication hook (ZAP, RFC 27) for CURVE: a CURVE handshake on a socket whose ZAP
 // domain is listed here succeeds only when the peer's public key is among that domain's keys.
-// Everyone else is refused during the handshake and never gets a message through.
+// Everyone else is refused during the handshake and never gets a message through. An accepted
+// peer's messages carry its public key as their User-Id.
 class ZapHandler {
  public:
   // `accepted`: domain -> Z85 public keys. Binds inproc://zeromq.zap.01 in `context`, which must

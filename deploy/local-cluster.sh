@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Runs the service on this host without systemd: a coordinator and N workers, each a background
 # process with its pid file and log in one run directory, for trying the service or for tests.
-# Usage: deploy/local-cluster.sh start [N] | stop | status
+# Usage: deploy/local-cluster.sh start [N] [--insecure] | stop | status
 #   N (start only): workers to start, default the number of cores.
+#   --insecure (start only): allow endpoints other hosts reach, although CURVE is off.
 # Environment: EVOSLAM_RUN_DIR (default run/local-cluster), EVOSLAM_BIN (default build/),
 #   EVOSLAM_CLIENTS (default tcp://127.0.0.1:5555), EVOSLAM_WORKERS (default tcp://127.0.0.1:5556),
 #   EVOSLAM_STOP_TIMEOUT (seconds stop waits before SIGKILL, default 30).
@@ -28,8 +29,9 @@ self=$0
 [[ -n ${EVOSLAM_RUN_DIR:-} ]] && self="EVOSLAM_RUN_DIR=$EVOSLAM_RUN_DIR $0"
 
 usage() {
-  echo "usage: $0 start [N] | stop | status" >&2
+  echo "usage: $0 start [N] [--insecure] | stop | status" >&2
   echo "  start [N]  a coordinator and N workers (default: $(nproc), the cores) in $run_dir" >&2
+  echo "             --insecure: allow endpoints other hosts reach (CURVE is off)" >&2
   echo "  stop       SIGTERM to all of them, waiting up to EVOSLAM_STOP_TIMEOUT s" >&2
   echo "  status     which processes run, and the coordinator's workers and jobs" >&2
   exit 2
@@ -148,17 +150,30 @@ start() {
       "run '$self stop' first" >&2
     exit 1
   fi
+  # This cluster runs without CURVE: an endpoint other hosts reach needs --insecure, as the
+  # coordinator itself does.
+  local endpoint insecure_flag=()
+  for endpoint in "$clients" "$workers"; do
+    case $endpoint in tcp://127.* | tcp://localhost:* | "tcp://[::1]:"* | ipc://* | inproc://*) ;;
+      *)
+        if [[ $insecure != 1 ]]; then
+          echo "local-cluster: refusing $endpoint: other hosts reach it and CURVE is off;" \
+            "give start --insecure to run so on a network you trust (docs/service.md)" >&2
+          exit 2
+        fi
+        echo "local-cluster: warning: $endpoint is reachable from other hosts and CURVE is off" >&2
+        insecure_flag=(--insecure)
+        ;;
+    esac
+  done
   mkdir -p "$run_dir"
   rm -f "$run_dir"/*.pid
   echo "$clients_connect" > "$run_dir/clients.endpoint"
-  case $clients in tcp://127.* | tcp://localhost:* | ipc://* | inproc://*) ;;
-    *) echo "local-cluster: warning: $clients is reachable from other hosts and CURVE is off" >&2 ;;
-  esac
   # Several OpenMP processes share the cores: spinning threads would starve the others.
   export OMP_WAIT_POLICY=passive
   # setsid: the processes outlive this shell and a Ctrl-C in its terminal.
   setsid "$coordinator_bin" --clients "$clients" --workers "$workers" --db "$run_dir/jobs.db" \
-    < /dev/null >> "$run_dir/coordinator.log" 2>&1 &
+    "${insecure_flag[@]}" < /dev/null >> "$run_dir/coordinator.log" 2>&1 &
   echo $! > "$run_dir/coordinator.pid"
   for ((i = 1; i <= n; i++)); do
     mkdir -p "$run_dir/cache/worker-$i"
@@ -235,6 +250,11 @@ status() {
 
 case $action in
   start)
+    insecure=0
+    if [[ ${!#} == --insecure ]]; then
+      insecure=1
+      set -- "${@:1:$#-1}"
+    fi
     (($# <= 2)) || usage
     n=${2:-$(nproc)}
     [[ $n =~ ^[1-9][0-9]{0,2}$ ]] || usage

@@ -3,7 +3,9 @@
 # two worker hosts and a client host, joined by veth pairs to a bridge in a fifth "switch"
 # namespace (so the host's own network is never touched). CURVE is on, with keys from
 # `evoslam keygen`. It checks that a small island job succeeds with both workers doing tasks,
-# and that a client or a worker whose key is not accepted gets no service. Everything it made
+# that a second accepted client key sees none of the first key's jobs, that a client or a worker
+# whose key is not accepted gets no service, and that a coordinator without CURVE refuses the
+# host's network address. Everything it made
 # is removed on exit, pass or fail. Needs root and iproute2.
 # Usage: deploy/netns-test.sh   (binaries from EVOSLAM_BIN, default build/)
 set -euo pipefail
@@ -107,10 +109,10 @@ done
 
 # --- keys: a pair for each party; the coordinator accepts the folders' public keys only ---
 mkdir -p "$tmp/keys" "$tmp/accepted-clients" "$tmp/accepted-workers"
-for name in coordinator worker1 worker2 client intruder; do
+for name in coordinator worker1 worker2 client client2 intruder; do
   "$evoslam" keygen --name "$name" --out "$tmp/keys" > /dev/null
 done
-cp "$tmp/keys/client.pub" "$tmp/accepted-clients/"
+cp "$tmp/keys/client.pub" "$tmp/keys/client2.pub" "$tmp/accepted-clients/"
 cp "$tmp/keys/worker1.pub" "$tmp/keys/worker2.pub" "$tmp/accepted-workers/"
 
 # --- service: coordinator bound to its 10.x address, one single-threaded worker per host ---
@@ -137,6 +139,11 @@ as_client() {
   in_ns "$client" "$evoslam" "$@" --coordinator "$clients_ep" \
     --curve-server-key "$tmp/keys/coordinator.pub" --curve-key "$tmp/keys/client.key"
 }
+# Another accepted client, on the same host: it must see none of the first one's jobs.
+as_client2() {
+  in_ns "$client" "$evoslam" "$@" --coordinator "$clients_ep" \
+    --curve-server-key "$tmp/keys/coordinator.pub" --curve-key "$tmp/keys/client2.key"
+}
 
 listing=""
 for _ in $(seq 60); do
@@ -159,8 +166,36 @@ in_ns "$client" timeout 300 "$evoslam" localize --map "$tmp/sim/world.lines" \
 scans=$(grep -vc '^#' "$tmp/out/trajectory.txt")
 ((scans == 40)) || fail "the job's trajectory has $scans poses, not 40"
 jobs=$(as_client jobs --timeout 5)
-grep -q '^job-1  succeeded' <<< "$jobs" || fail "evoslam jobs does not show job-1 succeeded: $jobs"
+job_id=$(grep -oE '^job-[0-9a-f]{32}' <<< "$jobs" | head -n 1)
+[[ -n $job_id ]] && grep -q "^$job_id  succeeded" <<< "$jobs" ||
+  fail "evoslam jobs does not show the job succeeded, under a random id: $jobs"
 echo "netns-test: island job succeeded ($scans poses): $(grep 'RMS error' "$tmp/localize.log" | xargs)"
+
+# --- ownership: the second client key sees nothing of the first one's job ---
+jobs2=$(as_client2 jobs --timeout 5) || fail "the second client could not list jobs: $jobs2"
+[[ $jobs2 != *job-* ]] || fail "the second client lists the first one's jobs: $jobs2"
+for command in status cancel; do
+  if out=$(as_client2 "$command" "$job_id" --timeout 5 2>&1); then
+    fail "the second client could $command the first one's job: $out"
+  fi
+  [[ $out == *"no job $job_id"* ]] || fail "$command by the second client failed otherwise: $out"
+done
+if out=$(as_client2 result "$job_id" --out "$tmp/stolen" --timeout 5 2>&1) || [[ -e $tmp/stolen ]]; then
+  fail "the second client fetched the first one's result: $out"
+fi
+grep -q "^$job_id  succeeded" <<< "$(as_client jobs --timeout 5)" ||
+  fail "the job is no longer the first client's, or no longer succeeded"
+echo "netns-test: a second client key sees none of the first one's jobs (jobs, status, cancel, result)"
+
+# --- without CURVE the coordinator refuses the host's network address ---
+set +e
+ip netns exec "$coord" "$bin/coordinator/evoslam-coordinator" --clients "tcp://$coordinator_ip:5557" \
+  --workers "tcp://127.0.0.1:5558" --db "$tmp/plain.db" > "$tmp/plain.log" 2>&1
+status=$?
+set -e
+((status == 2)) && grep -q "without CURVE" "$tmp/plain.log" ||
+  fail "a coordinator without CURVE on $coordinator_ip exited $status: $(cat "$tmp/plain.log")"
+echo "netns-test: without CURVE the coordinator refused tcp://$coordinator_ip:5557 (exit 2)"
 
 # --- both workers did some of it ---
 listing=$(as_client workers --timeout 5)

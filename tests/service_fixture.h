@@ -385,7 +385,7 @@ class ServiceTest : public ::testing::Test {
   // Submits the job with `evoslam localize --detach` and returns its id.
   std::string SubmitDetached(const Job& job, const std::string& clients) {
     const CommandResult r = Cli(RemoteArgs(job, "", clients, {"--detach"}));
-    static const std::regex kJobId(R"((^|\n)(job-\d+)\n)");
+    static const std::regex kJobId(R"((^|\n)(job-[0-9a-f]+)\n)");
     std::smatch match;
     if (r.exit_code != 0 || !std::regex_search(r.output, match, kJobId)) {
       throw std::runtime_error("submitting failed:\n" + r.output);

@@ -8,6 +8,7 @@
 #include <map>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "common/image/image.h"
@@ -59,33 +60,9 @@ class YamlMap {
   explicit YamlMap(const fs::path& path) : source_(path.string()) {
     std::ifstream in(path);
     if (!in) throw InputError(source_, 0, "cannot open map YAML file");
-    std::string raw;
-    std::size_t number = 0;
-    while (std::getline(in, raw)) {
-      ++number;
-      if (!raw.empty() && (raw.front() == ' ' || raw.front() == '\t') &&
-          !Trim(StripComment(raw)).empty()) {
-        throw InputError(source_, number,
-                         "expected 'key: value' at the start of the line; nested YAML is not "
-                         "supported");
-      }
-      const std::string_view line = Trim(StripComment(raw));
-      if (line.empty() || line == "---" || line == "...") continue;
-      const std::size_t colon = line.find(':');
-      if (colon == std::string_view::npos || colon == 0) {
-        throw InputError(source_, number, "expected 'key: value', got '" + std::string(line) + "'");
-      }
-      const std::string key(Trim(line.substr(0, colon)));
-      const auto [it, inserted] =
-          entries_.emplace(key, Entry{std::string(Trim(line.substr(colon + 1))), number});
-      if (!inserted) {
-        throw InputError(
-            source_, number,
-            "duplicate key '" + key + "' (first on line " + std::to_string(it->second.line) + ")");
-      }
-    }
-    if (in.bad()) throw InputError(source_, 0, "cannot read map YAML file");
+    Parse(in);
   }
+  YamlMap(std::istream& in, std::string source) : source_(std::move(source)) { Parse(in); }
 
   const std::string& source() const { return source_; }
 
@@ -133,6 +110,35 @@ class YamlMap {
   }
 
  private:
+  void Parse(std::istream& in) {
+    std::string raw;
+    std::size_t number = 0;
+    while (std::getline(in, raw)) {
+      ++number;
+      if (!raw.empty() && (raw.front() == ' ' || raw.front() == '\t') &&
+          !Trim(StripComment(raw)).empty()) {
+        throw InputError(source_, number,
+                         "expected 'key: value' at the start of the line; nested YAML is not "
+                         "supported");
+      }
+      const std::string_view line = Trim(StripComment(raw));
+      if (line.empty() || line == "---" || line == "...") continue;
+      const std::size_t colon = line.find(':');
+      if (colon == std::string_view::npos || colon == 0) {
+        throw InputError(source_, number, "expected 'key: value', got '" + std::string(line) + "'");
+      }
+      const std::string key(Trim(line.substr(0, colon)));
+      const auto [it, inserted] =
+          entries_.emplace(key, Entry{std::string(Trim(line.substr(colon + 1))), number});
+      if (!inserted) {
+        throw InputError(
+            source_, number,
+            "duplicate key '" + key + "' (first on line " + std::to_string(it->second.line) + ")");
+      }
+    }
+    if (in.bad()) throw InputError(source_, 0, "cannot read map YAML file");
+  }
+
   std::string source_;
   std::map<std::string, Entry> entries_;
 };
@@ -270,6 +276,11 @@ OccupancyGrid ReadMapYaml(const fs::path& yaml_path) {
   }
   grid.UpdateDistanceField();
   return grid;
+}
+
+std::string ReadMapYamlImageName(std::istream& yaml, const std::string& source) {
+  return YamlMap::Unquote(
+      YamlMap(yaml, source).Require("image", "the map image's file name").value);
 }
 
 void WriteMapYaml(const OccupancyGrid& grid, const fs::path& yaml) {

@@ -2,6 +2,8 @@
 #define EVOSLAM_COMMON_GRID_MAP_IO_H_
 
 #include <filesystem>
+#include <istream>
+#include <string>
 
 #include "common/grid/occupancy_grid.h"
 
@@ -23,6 +25,10 @@ namespace evoslam {
 // distance field built. Throws evoslam::InputError naming the file, and the line for YAML
 // problems, on a missing or duplicate key, a bad value, or a missing or malformed image.
 OccupancyGrid ReadMapYaml(const std::filesystem::path& yaml);
+
+// The image a map YAML names, as written there (unquoted), read by ReadMapYaml's own parser;
+// nothing else is read. Throws evoslam::InputError naming `source` as ReadMapYaml does.
+std::string ReadMapYamlImageName(std::istream& yaml, const std::string& source);
 
 // Writes `yaml` and, beside it, the image NAME.pgm for yaml NAME.yaml: occupied cells 0, free
 // 254, unknown 205, with map_server's usual thresholds 0.65 and 0.196. Throws evoslam::Error

@@ -1,5 +1,9 @@
 #include "common/protocol/zmq_io.h"
 
+#include <arpa/inet.h>
+
+#include <array>
+
 #include "common/protocol/curve_keys.h"
 #include "common/util/error.h"
 
@@ -55,6 +59,24 @@ void Connect(zmq::socket_t& socket, const std::string& endpoint, std::string_vie
   } catch (const zmq::error_t& e) {
     throw Error("cannot connect to " + std::string(what) + " at " + endpoint + ": " + e.what());
   }
+}
+
+bool IsLoopbackEndpoint(std::string_view endpoint) {
+  if (endpoint.starts_with("ipc://") || endpoint.starts_with("inproc://")) return true;
+  if (!endpoint.starts_with("tcp://")) return false;
+  std::string_view host = endpoint.substr(6);
+  const std::size_t colon = host.rfind(':');
+  if (colon == std::string_view::npos) return false;
+  host = host.substr(0, colon);
+  if (host == "localhost") return true;
+  if (host.size() >= 2 && host.front() == '[' && host.back() == ']') {
+    host = host.substr(1, host.size() - 2);
+  }
+  const std::string text(host);
+  std::array<unsigned char, 16> address{};
+  if (::inet_pton(AF_INET, text.c_str(), address.data()) == 1) return address[0] == 127;
+  return ::inet_pton(AF_INET6, text.c_str(), address.data()) == 1 &&
+         address == std::array<unsigned char, 16>{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1};
 }
 
 void MakeCurveServer(zmq::socket_t& socket, const CurveServerKeys& keys, std::string_view domain) {

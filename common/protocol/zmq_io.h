@@ -33,6 +33,11 @@ bool Send(zmq::socket_t& dealer, std::string_view payload);
 void Bind(zmq::socket_t& socket, const std::string& endpoint, std::string_view what);
 void Connect(zmq::socket_t& socket, const std::string& endpoint, std::string_view what);
 
+// Whether only this host can reach a socket bound to `endpoint`: tcp on a loopback address
+// (127.0.0.0/8, ::1, localhost), ipc or inproc. A wildcard, any other address and any other
+// host or interface name are not.
+bool IsLoopbackEndpoint(std::string_view endpoint);
+
 // The CURVE settings of a socket: a server with its secret key, or a client that knows the
 // server's public key and has a key pair of its own. Keys are Z85 text.
 struct CurveServerKeys {

@@ -41,5 +41,18 @@ TEST(ZmqIoTest, ABadEndpointIsAnErrorNamingItAndWhatItWasFor) {
   EXPECT_EQ(Text(frames->back()), "hello");
 }
 
+TEST(ZmqIoTest, OnlyLoopbackEndpointsCountAsLocal) {
+  for (const char* local : {"tcp://127.0.0.1:5555", "tcp://127.8.9.1:*", "tcp://localhost:5555",
+                            "tcp://[::1]:5555", "ipc:///tmp/evoslam.sock", "inproc://x"}) {
+    EXPECT_TRUE(IsLoopbackEndpoint(local)) << local;
+  }
+  for (const char* open :
+       {"tcp://0.0.0.0:5555", "tcp://*:5555", "tcp://10.0.0.1:5555", "tcp://[::]:5555",
+        "tcp://eth0:5555", "tcp://example.org:5555", "tcp://127.0.0.1.example.org:5555",
+        "tcp://127.0.0.1", "udp://x:1", "tcp://[::ffff:10.0.0.1]:5555"}) {
+    EXPECT_FALSE(IsLoopbackEndpoint(open)) << open;
+  }
+}
+
 }  // namespace
 }  // namespace evoslam

@@ -5,15 +5,37 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <sstream>
 #include <string>
 
 #include "common/eval/trajectory_errors.h"
+#include "common/grid/map_io.h"
 #include "common/io/carmen_reader.h"
 #include "common/io/relations.h"
 #include "common/report/slam_report.h"
 #include "common/util/counted.h"
 
 namespace evoslam {
+
+bool IsMapYaml(const proto::DatasetRef& map) {
+  const std::string ext = std::filesystem::path(SafeFileName(map.name())).extension().string();
+  return ext == ".yaml" || ext == ".yml";
+}
+
+void CheckMapImageIsOwn(const std::string& yaml, const proto::DatasetRef& map,
+                        const proto::DatasetRef& image) {
+  if (image.sha256().empty()) {
+    throw Error("map " + map.name() + ": a map_server map needs its image uploaded with it");
+  }
+  std::istringstream in(yaml);
+  const std::string named = ReadMapYamlImageName(in, map.name());
+  const std::string own = SafeFileName(image.name());
+  if (named != own) {
+    throw Error("map " + map.name() + ": its image must be the one uploaded with the job, named '" +
+                own + "' alone; '" + named.substr(0, 200) +
+                "' is not (a job's files may refer only to one another)");
+  }
+}
 
 std::filesystem::path NeedDataset(const DatasetFiles& files, const proto::DatasetRef& ref,
                                   const char* what) {

@@ -15,6 +15,16 @@
 
 namespace evoslam {
 
+// Whether a job's map is a map_server YAML, read with the image uploaded beside it.
+bool IsMapYaml(const proto::DatasetRef& map);
+
+// A job's files may refer only to one another: a map_server YAML (`yaml`, its bytes) must name
+// as its image the image uploaded with the job (`image`), by that file name alone. A path there
+// would make every host that runs the job read a file of its own disk. Throws Error otherwise,
+// having read no other file, so that the message tells nothing about what exists anywhere.
+void CheckMapImageIsOwn(const std::string& yaml, const proto::DatasetRef& map,
+                        const proto::DatasetRef& image);
+
 // Where `ref` is kept; throws Error naming it (`what`: "log", "map", ...) when it is not here.
 std::filesystem::path NeedDataset(const DatasetFiles& files, const proto::DatasetRef& ref,
                                   const char* what);

@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <memory>
 #include <string>
 
@@ -119,6 +120,64 @@ TEST(LoadLocalizeInputsTest, AMapWithoutWallsIsRefused) {
   const InputError grid = LocalizeInputsError(files, yaml, pgm);
   EXPECT_EQ(grid.source(), "free.yaml");
   EXPECT_THAT(grid.message(), HasSubstr("no occupied cell"));
+}
+
+// Every way a map's YAML could name a file that is not its own image.
+const char* const kForeignImages[] = {"/etc/secret.pgm",
+                                      "../secret.pgm",
+                                      "sub/../../secret.pgm",
+                                      "./secret.pgm",
+                                      "%2e%2e%2fsecret.pgm",
+                                      "~/secret.pgm",
+                                      "/proc/self/root/etc/secret.pgm",
+                                      "\"../secret.pgm\"",
+                                      "own.pgm/../x.pgm",
+                                      "file:///etc/secret.pgm"};
+
+TEST(CheckMapImageIsOwnTest, AMapNamesOnlyTheImageUploadedWithIt) {
+  proto::DatasetRef map, image;
+  map.set_name("site/map.yaml");
+  image.set_name("site/own.pgm");
+  image.set_sha256(std::string(64, 'a'));
+  EXPECT_NO_THROW(CheckMapImageIsOwn(MapYaml("own.pgm"), map, image));
+  EXPECT_NO_THROW(CheckMapImageIsOwn(MapYaml("'own.pgm'"), map, image));
+  for (const char* foreign : kForeignImages) {
+    try {
+      CheckMapImageIsOwn(MapYaml(foreign), map, image);
+      ADD_FAILURE() << foreign << " was accepted";
+    } catch (const Error& e) {
+      EXPECT_THAT(e.what(), HasSubstr("must be the one uploaded with the job")) << foreign;
+    }
+  }
+  // Without its image a map YAML names nothing it may read.
+  EXPECT_THROW(CheckMapImageIsOwn(MapYaml("own.pgm"), map, {}), Error);
+  EXPECT_TRUE(IsMapYaml(map));
+  EXPECT_FALSE(IsMapYaml(image));
+}
+
+TEST(LoadLocalizeInputsTest, AMapNamingAFileOutsideTheJobIsNeverRead) {
+  TempDir dir;
+  DatasetFiles files(dir / "cache");
+  // A private image on this host, readable by the process: it must not become the job's map.
+  const std::string secret = (dir / "secret.pgm").string();
+  {
+    std::ofstream out(secret);
+    out << "P2\n2 1\n255\n0 0\n";
+  }
+  const proto::DatasetRef pgm = Keep(files, "own.pgm", "P2\n2 1\n255\n0 255\n");
+  const proto::DatasetRef log = Keep(files, "walk.clf", kTwoScanLog);
+  for (const std::string& image :
+       {secret, std::string("../../secret.pgm"), std::string("../") + pgm.sha256() + "/own.pgm"}) {
+    const proto::DatasetRef yaml = Keep(files, "map.yaml", MapYaml(image));
+    try {
+      LoadLocalizeInputs(files, log, yaml, pgm, ToProto(LocalizeOptions{}));
+      ADD_FAILURE() << image << " was read";
+    } catch (const Error& e) {
+      EXPECT_THAT(e.what(), HasSubstr("must be the one uploaded with the job")) << image;
+    }
+    // Nor without an image of its own.
+    EXPECT_THROW(LoadLocalizeInputs(files, log, yaml, {}, ToProto(LocalizeOptions{})), Error);
+  }
 }
 
 TEST(LoadSharedJobLogTest, ALogIsParsedOnceWhileItIsHeld) {

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "common/io/carmen_reader.h"
+#include "common/io/file_bytes.h"
 #include "common/localization/localize_params.h"
 #include "common/service/job_inputs.h"
 #include "common/util/error.h"
@@ -34,14 +35,17 @@ std::shared_ptr<const LocalizeInputs> LoadLocalizeInputs(DatasetFiles& files,
         })});
   }
   std::filesystem::path image_path;
-  if (!map_image.sha256().empty()) {
+  if (IsMapYaml(map)) {
+    // Checked again here, not only when the job was submitted: this host reads no file the
+    // job's own files do not name.
+    CheckMapImageIsOwn(ReadFileBytes(map_path), map, map_image);
     map_path = files.MapWithImage(map, map_image);
     image_path = map_path.parent_path() / NeedDataset(files, map_image, "map image").filename();
   }
-  return std::make_shared<const LocalizeInputs>(LocalizeInputs{
-      std::move(options), std::move(dataset),
-      NamedInput({{map_path, map.name()}, {image_path, map_image.name()}},
-                 [&] { return LoadMapModel(map_path); })});
+  return std::make_shared<const LocalizeInputs>(
+      LocalizeInputs{std::move(options), std::move(dataset),
+                     NamedInput({{map_path, map.name()}, {image_path, map_image.name()}},
+                                [&] { return LoadMapModel(map_path); })});
 }
 
 }  // namespace evoslam
