@@ -28,8 +28,8 @@ WorkerTable::Arrival WorkerTable::Ready(const std::string& identity, const proto
       w.id = old->second.id;
       w.tasks_done = old->second.tasks_done;
       w.faults = old->second.faults;
-      arrival.replaced = old->first;
-      arrival.replaced_task = Remove(old->first);
+      arrival.replaced = old->first;  // a copy: Remove erases the key
+      arrival.replaced_task = Remove(*arrival.replaced);
     }
   }
   if (w.id.empty()) w.id = "w-" + std::to_string(++next_id_);

@@ -35,7 +35,8 @@ TEST_F(ServiceTest, ACoordinatorStoppedForEightSecondsFailsNoJob) {
   WaitForProgress(client, id);
   ASSERT_TRUE(c.process->Kill(SIGSTOP));
   std::this_thread::sleep_for(8s);
-  ASSERT_TRUE(c.process->Kill(SIGCONT));
+  ASSERT_TRUE(c.process->Kill(SIGCONT)) << "the coordinator ended while stopped: "
+                                        << ChildProcess::Describe(c.process->Wait(0s).value_or(0));
   ExpectSucceedsLike(client, id, reference);
   EXPECT_EQ(c.process->Log().find("giving up"), std::string::npos);
   EXPECT_NE(c.process->Log().find("the coordinator did not run for"), std::string::npos);
