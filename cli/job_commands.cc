@@ -1,5 +1,8 @@
 #include <zmq.hpp>
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <string>
@@ -100,9 +103,18 @@ void AddJobCommands(CLI::App& app) {
       ->callback([a] {
         Connection c(a->service);
         const auto workers = c.client.Workers();
+        const double now =
+            std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
+                .count();
         for (const proto::WorkerInfo& w : workers) {
+          std::string state = w.busy() ? "busy" : "idle";
+          if (w.quarantined_until_unix_s() > 0) {
+            state = "quarantined for " +
+                    std::to_string(std::max(0L, std::lround(w.quarantined_until_unix_s() - now))) +
+                    " s more (" + w.quarantine_reason() + ")";
+          }
           std::printf("%s  %s  %u threads  %s  %llu tasks done\n", w.worker_id().c_str(),
-                      w.hostname().c_str(), w.threads(), w.busy() ? "busy" : "idle",
+                      w.hostname().c_str(), w.threads(), state.c_str(),
                       static_cast<unsigned long long>(w.tasks_done()));
         }
         if (workers.empty()) std::printf("no workers connected\n");

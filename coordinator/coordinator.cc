@@ -136,7 +136,8 @@ class Coordinator::Impl {
   void HandleWorker(const std::string& identity, const proto::WorkerMessage& message);
   void SendToWorker(const std::string& identity, const proto::CoordinatorMessage& message);
   void Dispatch();
-  void CheckWorkers(Clock::time_point now);
+  void CheckWorkers(Clock::time_point now, bool stalled = false);
+  void Quarantine(const std::string& identity, const std::string& reason);
   void FlushEvents();
   proto::JobStatus StatusOf(const std::string& job_id);
   // StatusOf a job `requester` may see; any other is UNKNOWN_JOB, as if it did not exist.
@@ -186,7 +187,13 @@ Coordinator::Impl::Impl(zmq::context_t& context, CoordinatorOptions options)
       store_(options_.db),
       files_dir_("evoslam-coordinator"),
       files_(files_dir_.path()),
-      board_([this] { waker_.Wake(); }) {
+      board_([this] { waker_.Wake(); }, options_.max_task_attempts) {
+  // A coordinator killed with -9 left its dataset copies behind; this one clears them.
+  if (const std::size_t stale = RemoveStaleTempDirs("evoslam-coordinator")) {
+    spdlog::log(notice_, "removed {} left behind by coordinators that ended without cleaning up",
+                Counted(stale, "temporary dataset folder"));
+  }
+  MarkTempDirOwner(files_dir_.path());
   limits_.max_frame_bytes = options_.max_message_bytes;
   if (!options_.curve_secret_key.empty()) {
     std::set<std::string> clients = options_.client_keys;
@@ -225,6 +232,11 @@ void Coordinator::Impl::Run(const std::stop_token& stop) {
   spdlog::log(notice_, "coordinator: clients on {}, workers on {}{}", clients_endpoint(),
               workers_endpoint(), zap_ ? ", CURVE on" : "");
   next_heartbeat_ = Clock::now();
+  // Longer than this between two turns of the loop, the process was stopped or starved: its
+  // workers gave up on it meanwhile, and what its sockets hold from them is stale.
+  const Clock::duration stall =
+      Seconds(options_.heartbeat_seconds * options_.liveness) + std::chrono::milliseconds(100);
+  Clock::time_point turned = Clock::now();
   while (!stop.stop_requested()) {
     std::vector<zmq::pollitem_t> items = {
         {clients_.handle(), 0, ZMQ_POLLIN, 0},
@@ -234,6 +246,15 @@ void Coordinator::Impl::Run(const std::stop_token& stop) {
     if (zap_) items.push_back({zap_->socket().handle(), 0, ZMQ_POLLIN, 0});
     zmq::poll(items, std::chrono::milliseconds(100));
     if (items[2].revents & ZMQ_POLLIN) waker_.Drain();
+    const Clock::time_point woke = Clock::now();
+    if (woke - turned > stall) {
+      spdlog::warn(
+          "the coordinator did not run for {:.1f} s; workers not heard from since must "
+          "introduce themselves again",
+          std::chrono::duration<double>(woke - turned).count());
+      CheckWorkers(woke, true);
+    }
+    turned = woke;
     if (zap_ && (items[3].revents & ZMQ_POLLIN)) zap_->HandleOne();
     if (items[0].revents & ZMQ_POLLIN) OnClientFrames();
     if (items[1].revents & ZMQ_POLLIN) OnWorkerFrames();
@@ -569,9 +590,19 @@ void Coordinator::Impl::OnWorkerFrames() {
 
 void Coordinator::Impl::SendToWorker(const std::string& identity,
                                      const proto::CoordinatorMessage& message) {
-  if (!SendTo(workers_, identity, Encode(message))) {
-    if (auto task = table_.Remove(identity)) board_.Requeue(*task);
+  if (SendTo(workers_, identity, Encode(message))) return;
+  // Its connection is closed: the worker ended, or reconnected on a new one.
+  const auto task = table_.Remove(identity);
+  if (task && message.has_task()) {
+    // Never delivered: not the task's fault.
+    board_.Return(*task);
+    spdlog::log(notice_, "worker {} is gone (its connection is closed); {} goes to another",
+                Peer(identity), *task);
+    return;
   }
+  if (task) board_.Requeue(*task);
+  spdlog::log(notice_, "worker {} is gone (its connection is closed){}", Peer(identity),
+              task ? " in the middle of task " + *task + "; it goes to another" : "");
 }
 
 void Coordinator::Impl::HandleWorker(const std::string& identity,
@@ -581,10 +612,18 @@ void Coordinator::Impl::HandleWorker(const std::string& identity,
     // A repeated Ready is no restart (see WorkerTable::Ready). Taken for one, it would make the
     // worker idle while a task is on its way to it: it would be sent a second, refuse it as
     // busy, and the refusal would fail the job.
-    if (table_.Ready(identity, message.ready(), now)) {
-      spdlog::log(notice_, "worker {} ({}, {}) is ready", Peer(identity),
-                  message.ready().hostname().substr(0, 64),
-                  Counted(message.ready().threads(), "thread"));
+    const WorkerTable::Arrival arrival = table_.Ready(identity, message.ready(), now);
+    if (arrival.is_new) {
+      if (arrival.replaced_task) board_.Return(*arrival.replaced_task);
+      spdlog::log(
+          notice_, "worker {} ({}, {}) is ready{}{}", Peer(identity),
+          message.ready().hostname().substr(0, 64), Counted(message.ready().threads(), "thread"),
+          arrival.replaced ? "; it was " + Peer(*arrival.replaced) +
+                                 (arrival.replaced_task ? ", whose task " + *arrival.replaced_task +
+                                                              " goes to another"
+                                                        : "")
+                           : "",
+          arrival.quarantined ? " (quarantined)" : "");
     } else {
       spdlog::debug("worker {} said Ready again", Peer(identity));
     }
@@ -639,6 +678,24 @@ void Coordinator::Impl::HandleWorker(const std::string& identity,
         spdlog::warn("worker {} was busy; {} goes to another", Peer(identity), result.task_id());
         break;
       }
+      if (result.has_error() && result.worker_fault()) {
+        // The worker's fault, not the task's: the task goes to another.
+        const int faults = table_.Failed(identity);
+        board_.Return(result.task_id());
+        spdlog::warn("worker {} could not run {}: {}; it goes to another", Peer(identity),
+                     result.task_id(), result.error().message().substr(0, 300));
+        if (faults >= options_.quarantine_after) {
+          Quarantine(identity, "failed " + Counted(faults, "task") +
+                                   " in a row: " + result.error().message().substr(0, 200));
+        }
+        break;
+      }
+      if (const auto invalid = board_.Check(result)) {
+        // A buggy or hostile worker: its answer is dropped, and so is the worker (its task goes
+        // to another).
+        Quarantine(identity, "sent an invalid result for " + result.task_id() + ": " + *invalid);
+        break;
+      }
       table_.Done(identity);
       if (!board_.Complete(result)) {
         spdlog::debug("dropped the answer for {}: nobody waits for it", result.task_id());
@@ -670,18 +727,36 @@ void Coordinator::Impl::Dispatch() {
   }
 }
 
-void Coordinator::Impl::CheckWorkers(Clock::time_point now) {
+void Coordinator::Impl::CheckWorkers(Clock::time_point now, bool stalled) {
   const Clock::time_point silent_since =
       now - Seconds(options_.heartbeat_seconds * options_.liveness);
   for (const std::string& identity : table_.Lost(now, silent_since)) {
     const auto task = table_.Remove(identity);
-    spdlog::warn("worker {} is lost (silent or overdue){}", Peer(identity),
-                 task ? "; its task " + *task + " goes to another" : "");
-    if (task) board_.Requeue(*task);
+    if (stalled) {
+      // The coordinator fell silent, not the worker: the task is not to blame.
+      spdlog::log(notice_, "worker {} is dropped after the stall{}", Peer(identity),
+                  task ? "; its task " + *task + " goes to another" : "");
+      if (task) board_.Return(*task);
+    } else {
+      spdlog::warn("worker {} is lost (silent or overdue){}", Peer(identity),
+                   task ? "; its task " + *task + " goes to another" : "");
+      if (task) board_.Requeue(*task);
+    }
     proto::CoordinatorMessage bye;
     bye.mutable_disconnect()->set_reason("silent or overdue: send Ready");
     SendTo(workers_, identity, Encode(bye));
   }
+  for (const std::string& identity : table_.Release(now)) {
+    spdlog::log(notice_, "worker {} is back in the pool after its quarantine", Peer(identity));
+  }
+}
+
+void Coordinator::Impl::Quarantine(const std::string& identity, const std::string& reason) {
+  const auto task =
+      table_.Quarantine(identity, Clock::now() + Seconds(options_.quarantine_seconds), reason);
+  if (task) board_.Return(*task);
+  spdlog::warn("worker {} is dropped from the pool for {:g} s (quarantined): {}", Peer(identity),
+               options_.quarantine_seconds, reason);
 }
 
 // ---- Jobs ----

@@ -38,6 +38,15 @@ struct CoordinatorOptions {
   double heartbeat_seconds = 1.0;
   int liveness = 3;                   // heartbeats missed before a worker counts as gone
   double task_timeout_seconds = 600;  // a task not answered by then is given to another worker
+  // Times a task may lose its worker (silent, overdue, its connection closed while it computed)
+  // before its job fails: a task that kills every worker it reaches must not kill them all. A
+  // failure that is not the task's (a send to a closed connection, a stalled coordinator, a
+  // worker's own fault or invalid answer) does not count.
+  int max_task_attempts = 3;
+  // A worker that fails this many tasks in a row through its own fault (its disk, its memory) is
+  // out of the pool for `quarantine_seconds`; one that sends an invalid result is at once.
+  int quarantine_after = 3;
+  double quarantine_seconds = 60;
   // Least time between two saved checkpoints of a job: every epoch of a long search is saved,
   // but jobs of many millisecond epochs are not slowed by a database write each.
   double checkpoint_seconds = 1.0;

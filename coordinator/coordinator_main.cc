@@ -68,6 +68,18 @@ int main(int argc, char** argv) {
                  "seconds a task may take before it goes to another worker")
       ->capture_default_str()
       ->check(CLI::Range(0.1, 1e6));
+  app.add_option("--max-task-attempts", options.max_task_attempts,
+                 "times a task may lose its worker before its job fails")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
+  app.add_option("--quarantine-after", options.quarantine_after,
+                 "tasks a worker fails in a row through its own fault before it leaves the pool")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
+  app.add_option("--quarantine", options.quarantine_seconds,
+                 "seconds a failing worker stays out of the pool")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e6));
   app.add_option(
          "--checkpoint-interval", options.checkpoint_seconds,
          "least seconds between two saved checkpoints of a job (0: at every migration epoch)")

@@ -42,6 +42,7 @@ SearchRuntime RemoteSearch(const JobContext& context, const proto::ProblemSpec& 
       *task.mutable_problem() = problem;
       *task.mutable_evaluate()->mutable_candidates() =
           ToProto(Eigen::MatrixXd(candidates.middleCols(first, n)));
+      task.mutable_evaluate()->set_objectives(static_cast<std::uint32_t>(local.objectives()));
       tasks.push_back(std::move(task));
     }
     const auto results = context.board->RunAll(context.job_id, std::move(tasks));

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <utility>
 
+#include "coordinator/result_check.h"
+
 namespace evoslam {
 
 TaskBoard::TaskBoard(std::function<void()> wake, int max_attempts)
@@ -78,6 +80,20 @@ bool TaskBoard::Complete(const proto::TaskResult& result) {
   }
   done_.notify_all();
   return true;
+}
+
+std::optional<std::string> TaskBoard::Check(const proto::TaskResult& result) const {
+  std::lock_guard lock(mutex_);
+  const auto it = posted_.find(result.task_id());
+  if (it == posted_.end() || it->second.result) return std::nullopt;
+  return CheckResult(it->second.task, result);
+}
+
+void TaskBoard::Return(const std::string& task_id) {
+  std::lock_guard lock(mutex_);
+  const auto it = posted_.find(task_id);
+  if (it == posted_.end() || it->second.result) return;
+  if (std::find(line_.begin(), line_.end(), task_id) == line_.end()) line_.push_front(task_id);
 }
 
 void TaskBoard::Requeue(const std::string& task_id) {

@@ -40,12 +40,19 @@ class TaskBoard {
 
   // The oldest waiting task, removed from the waiting line.
   std::optional<proto::Task> Take();
+  // What is wrong with `result` as an answer to its task (CheckResult); nullopt when it may be
+  // taken, or when nobody waits for it any more (Complete then drops it).
+  std::optional<std::string> Check(const proto::TaskResult& result) const;
   // Records a result. False when nobody waits for it any more (a task of a cancelled job, or
   // one already answered): the caller drops it.
   bool Complete(const proto::TaskResult& result);
   // Puts a task that was taken, but whose worker is gone, back at the front of the line, or
   // fails it after max_attempts.
   void Requeue(const std::string& task_id);
+  // Puts a task back at the front of the line without counting an attempt: its worker failed
+  // through no fault of the task (a send to a closed connection, a stalled coordinator, the
+  // worker's own fault or invalid answer).
+  void Return(const std::string& task_id);
 
   // Throws JobInterrupted when the job is cancelled or the board shut down: a job thread that
   // computes between its tasks asks, so that it stops as soon as one waiting for tasks would.

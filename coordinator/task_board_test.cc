@@ -150,5 +150,42 @@ TEST(TaskBoardTest, AJobThreadBetweenTasksCanAskWhetherToStop) {
   EXPECT_THROW(board.ThrowIfInterrupted("job-2"), JobInterrupted);
 }
 
+// A task whose worker failed through no fault of the task's goes back as often as it takes; a
+// task that loses its workers runs out of attempts.
+TEST(TaskBoardTest, AReturnedTaskCountsNoAttempt) {
+  TaskBoard board({}, 2);
+  auto results =
+      std::async(std::launch::async, [&] { return board.RunAll("job-1", {TaskWithScan(0)}); });
+  proto::Task task = TakeSoon(board);
+  for (int i = 0; i < 10; ++i) {
+    board.Return(task.task_id());
+    board.Return(task.task_id());  // once in the line, however often it is returned
+    task = TakeSoon(board);
+    EXPECT_FALSE(board.Take());
+  }
+  board.Requeue(task.task_id());  // attempt 2 of 2
+  task = TakeSoon(board);
+  board.Requeue(task.task_id());
+  EXPECT_FALSE(board.Take());
+  EXPECT_THROW(results.get(), Error);
+}
+
+TEST(TaskBoardTest, AnEchoedIslandIsInvalidAndAnAnswerToNoWaitingTaskIsNotChecked) {
+  TaskBoard board({});
+  proto::Task island;
+  island.mutable_evolve()->set_generations(5);
+  island.mutable_evolve()->mutable_island()->set_generation(3);
+  auto results = std::async(std::launch::async, [&] { return board.RunAll("job-1", {island}); });
+  const proto::Task task = TakeSoon(board);
+  proto::TaskResult echo;
+  echo.set_task_id(task.task_id());
+  *echo.mutable_island()->mutable_island() = task.evolve().island();
+  EXPECT_TRUE(board.Check(echo));
+  echo.set_task_id("t-999");
+  EXPECT_FALSE(board.Check(echo));
+  board.Cancel("job-1");
+  EXPECT_THROW(results.get(), JobInterrupted);
+}
+
 }  // namespace
 }  // namespace evoslam

@@ -1,20 +1,49 @@
 #include "coordinator/worker_table.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace evoslam {
 
-bool WorkerTable::Ready(const std::string& identity, const proto::Ready& ready,
-                        Clock::time_point now) {
-  if (Seen(identity, now)) return false;
+std::vector<std::string> WorkerTable::PenaltyKeys(const std::string& identity, const Worker& w) {
+  std::vector<std::string> keys = {"c:" + identity};
+  if (!w.instance.empty()) keys.push_back("i:" + w.instance);
+  return keys;
+}
+
+WorkerTable::Arrival WorkerTable::Ready(const std::string& identity, const proto::Ready& ready,
+                                        Clock::time_point now) {
+  Arrival arrival;
+  if (Seen(identity, now)) return arrival;
+  arrival.is_new = true;
   Worker w;
-  w.id = "w-" + std::to_string(++next_id_);
   w.hostname = ready.hostname().substr(0, 255);
   w.threads = ready.threads();
   w.last_seen = now;
+  w.instance = ready.instance().substr(0, 64);
+  if (!w.instance.empty()) {
+    const auto old = std::find_if(workers_.begin(), workers_.end(),
+                                  [&](const auto& e) { return e.second.instance == w.instance; });
+    if (old != workers_.end()) {
+      w.id = old->second.id;
+      w.tasks_done = old->second.tasks_done;
+      w.faults = old->second.faults;
+      arrival.replaced = old->first;  // a copy: Remove erases the key
+      arrival.replaced_task = Remove(*arrival.replaced);
+    }
+  }
+  if (w.id.empty()) w.id = "w-" + std::to_string(++next_id_);
+  for (const std::string& key : PenaltyKeys(identity, w)) {
+    const auto p = penalties_.find(key);
+    if (p != penalties_.end() && p->second.until > now) {
+      w.quarantined_until = p->second.until;
+      w.quarantine_reason = p->second.reason;
+    }
+  }
+  arrival.quarantined = w.quarantined_until.has_value();
   workers_.emplace(identity, std::move(w));
-  idle_.push_back(identity);
-  return true;
+  if (!arrival.quarantined) idle_.push_back(identity);
+  return arrival;
 }
 
 bool WorkerTable::Seen(const std::string& identity, Clock::time_point now) {
@@ -45,7 +74,43 @@ void WorkerTable::Done(const std::string& identity) {
   if (it == workers_.end() || !it->second.task) return;
   it->second.task.reset();
   ++it->second.tasks_done;
+  it->second.faults = 0;
   idle_.push_back(identity);
+}
+
+int WorkerTable::Failed(const std::string& identity) {
+  const auto it = workers_.find(identity);
+  if (it == workers_.end() || !it->second.task) return 0;
+  it->second.task.reset();
+  idle_.push_back(identity);
+  return ++it->second.faults;
+}
+
+std::optional<std::string> WorkerTable::Quarantine(const std::string& identity,
+                                                   Clock::time_point until,
+                                                   const std::string& reason) {
+  const auto it = workers_.find(identity);
+  if (it == workers_.end()) return std::nullopt;
+  Worker& w = it->second;
+  w.quarantined_until = until;
+  w.quarantine_reason = reason;
+  w.faults = 0;
+  for (const std::string& key : PenaltyKeys(identity, w)) penalties_[key] = {until, reason};
+  std::erase(idle_, identity);
+  return std::exchange(w.task, std::nullopt);
+}
+
+std::vector<std::string> WorkerTable::Release(Clock::time_point now) {
+  std::erase_if(penalties_, [&](const auto& p) { return p.second.until <= now; });
+  std::vector<std::string> released;
+  for (auto& [identity, w] : workers_) {
+    if (!w.quarantined_until || *w.quarantined_until > now) continue;
+    w.quarantined_until.reset();
+    w.quarantine_reason.clear();
+    if (!w.task) idle_.push_back(identity);
+    released.push_back(identity);
+  }
+  return released;
 }
 
 std::optional<std::string> WorkerTable::Remove(const std::string& identity) {
@@ -89,6 +154,11 @@ std::vector<proto::WorkerInfo> WorkerTable::List(Clock::time_point now, double n
     info.set_last_seen_unix_s(now_unix_s -
                               std::chrono::duration<double>(now - w.last_seen).count());
     info.set_tasks_done(w.tasks_done);
+    if (w.quarantined_until) {
+      info.set_quarantined_until_unix_s(
+          now_unix_s + std::chrono::duration<double>(*w.quarantined_until - now).count());
+      info.set_quarantine_reason(w.quarantine_reason);
+    }
     list.push_back(std::move(info));
   }
   return list;

@@ -11,6 +11,14 @@ TEST_F(ServiceTest, AJobOutlivesAWorkerKilledMidJob) {
   ChildProcess& victim = job.worker1;
   ASSERT_TRUE(victim.Kill(SIGKILL));
   ASSERT_TRUE(victim.Wait(5s));
+  // The coordinator says so: when it finds the connection closed, or the worker silent.
+  EXPECT_TRUE(WaitUntil(
+      [&] {
+        const std::string log = job.coordinator.process->Log();
+        return log.find("is gone (its connection is closed)") != std::string::npos ||
+               log.find("is lost (silent or overdue)") != std::string::npos;
+      },
+      10s));
   const proto::JobStatus end = WaitForEnd(job.client, job.id);
   ASSERT_EQ(end.state(), proto::JOB_STATE_SUCCEEDED) << Describe(end);
   EXPECT_EQ(end.done(), end.total());

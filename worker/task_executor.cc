@@ -1,6 +1,7 @@
 #include "worker/task_executor.h"
 
 #include <algorithm>
+#include <new>
 #include <string>
 
 #include "common/engine/engine_proto.h"
@@ -177,6 +178,11 @@ proto::TaskResult TaskExecutor::Run(const proto::Task& task) {
       throw Error("task " + task.task_id() + " asks for no work");
     }
     return result;
+  } catch (const std::bad_alloc&) {
+    // This worker's memory, not the task: another worker may have enough.
+    proto::TaskResult r = Failure(task.task_id(), "out of memory");
+    r.set_worker_fault(true);
+    return r;
   } catch (const std::exception& e) {
     return Failure(task.task_id(), e.what());
   }

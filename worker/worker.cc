@@ -10,6 +10,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
+#include <random>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -29,6 +30,14 @@ using Clock = std::chrono::steady_clock;
 
 Clock::duration Seconds(double s) {
   return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
+}
+
+// 128 random bits, drawn once per worker: how the coordinator knows it again on a new connection.
+std::string NewInstance() {
+  std::random_device random;
+  std::string hex;
+  for (int i = 0; i < 4; ++i) hex += fmt::format("{:08x}", random());
+  return hex;
 }
 
 std::string HostName() {
@@ -137,6 +146,7 @@ class Worker::Impl {
   zmq::context_t& context_;
   WorkerOptions options_;
   spdlog::level::level_enum notice_;
+  const std::string instance_ = NewInstance();
   std::optional<TempDir> private_cache_;
   std::shared_ptr<DatasetFiles> files_;
   std::shared_ptr<TaskExecutor> executor_;
@@ -189,6 +199,7 @@ void Worker::Impl::Send(const proto::WorkerMessage& message) {
 void Worker::Impl::SendReady() {
   proto::WorkerMessage m;
   m.mutable_ready()->set_hostname(options_.hostname);
+  m.mutable_ready()->set_instance(instance_);
   m.mutable_ready()->set_threads(
       static_cast<std::uint32_t>(options_.threads > 0 ? options_.threads : omp_get_max_threads()));
   Send(m);
@@ -245,15 +256,22 @@ void Worker::Impl::OnMessage(const proto::CoordinatorMessage& message) {
         return ref.sha256() == content.dataset().sha256();
       });
       if (it == fetching_.end()) return;
+      proto::TaskResult failed;
+      failed.set_task_id(task_->task_id());
+      if (content.content().empty() && it->size_bytes() != 0) {
+        failed.mutable_error()->set_message("the coordinator does not have dataset " + it->name());
+        Finish(std::move(failed));
+        return;
+      }
       try {
-        if (content.content().empty() && it->size_bytes() != 0) {
-          throw Error("the coordinator does not have dataset " + it->name());
-        }
         files_->Put(*it, content.content());
       } catch (const std::exception& e) {
-        proto::TaskResult failed;
-        failed.set_task_id(task_->task_id());
-        failed.mutable_error()->set_message(e.what());
+        // This worker's cache, not the task: another worker may run it.
+        spdlog::error("cannot cache dataset {}: {}", it->name(), e.what());
+        failed.mutable_error()->set_message("worker " + options_.hostname +
+                                            " cannot cache dataset " + it->name() + ": " +
+                                            e.what());
+        failed.set_worker_fault(true);
         Finish(std::move(failed));
         return;
       }
