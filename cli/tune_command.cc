@@ -18,6 +18,7 @@
 #include "cli/option_parsing.h"
 #include "cli/service_session.h"
 #include "common/engine/archipelago.h"
+#include "common/util/counted.h"
 #include "common/util/error.h"
 #include "evoslam/localize.pb.h"
 
@@ -106,8 +107,8 @@ void RunTune(const TuneArgs& t) {
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       r.runs.push_back({seconds, report.mean_fitness(), report.evaluations()});
-      spdlog::info("{} islands of {}, seed {}: {:.2f} s, mean fitness {:.6g}", n, a.population,
-                   a.seed, seconds, report.mean_fitness());
+      spdlog::info("{} of {}, seed {}: {:.2f} s, mean fitness {:.6g}", Counted(n, "island"),
+                   a.population, a.seed, seconds, report.mean_fitness());
     }
     results.push_back(std::move(r));
   }
@@ -148,7 +149,8 @@ void RunTune(const TuneArgs& t) {
       pick = r.islands;
     }
   }
-  std::printf("medians over %zu seeds; target mean fitness %.6g\n", t.seeds, target);
+  std::printf("medians over %s; target mean fitness %.6g\n", Counted(t.seeds, "seed").c_str(),
+              target);
   if (pick) {
     std::printf(
         "recommended for this host: --optimizer island --islands %zu (the fastest to reach the "

@@ -225,8 +225,8 @@ std::string FormatSummary(const proto::LocalizeReport& r) {
   }
   if (r.has_relation_errors()) {
     const auto& e = r.relation_errors();
-    s << "  relative error (" << e.source() << ", " << e.relations()
-      << " relations): " << FormatRelationErrors(e) << "\n";
+    s << "  relative error (" << e.source() << ", " << Counted(e.relations(), "relation")
+      << "): " << FormatRelationErrors(e) << "\n";
   }
   s << FormatOdometryStalls(r.odometry_stalls());
   if (r.has_log_warnings()) s << FormatLogWarnings(r.log_warnings());

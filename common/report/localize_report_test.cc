@@ -73,6 +73,10 @@ TEST(LocalizeReportTest, SummaryShowsErrorsInCentimetresAndDegrees) {
   EXPECT_NE(s.find("relative error (truth, 219 relations): 0.0114 +- 0.0073 m, 0.500"),
             std::string::npos)
       << s;
+  e.relations = 1;
+  *r.mutable_relation_errors() = ToProto(e, "truth");
+  EXPECT_NE(FormatSummary(r).find("relative error (truth, 1 relation): "), std::string::npos)
+      << FormatSummary(r);
   e = {};
   e.skipped = 12;
   *r.mutable_relation_errors() = ToProto(e, "truth");

@@ -102,8 +102,8 @@ std::string FormatSlamSummary(const proto::SlamReport& r) {
   }
   if (r.has_relation_errors()) {
     const auto& e = r.relation_errors();
-    s << "  relative error (" << e.source() << ", " << e.relations()
-      << " relations): " << FormatRelationErrors(e)
+    s << "  relative error (" << e.source() << ", " << Counted(e.relations(), "relation")
+      << "): " << FormatRelationErrors(e)
       << "\n    odometry alone: " << FormatRelationErrors(r.odometry_relation_errors()) << "\n";
   }
   return s.str();
