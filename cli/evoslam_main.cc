@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
       "office, no input files needed. `evoslam SUBCOMMAND --help` lists a subcommand's options.");
   std::string level = "info";
   app.add_option("--log-level", level, "trace, debug, info, warn, error or off")
-      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
+      ->check(evoslam::cli::OneOf({"trace", "debug", "info", "warn", "error", "off"}));
   app.parse_complete_callback([&] {
     evoslam::LogToStderr("evoslam");
     spdlog::set_level(spdlog::level::from_str(level));

@@ -32,7 +32,7 @@ void AddLocalizeJobOptions(CLI::App* cmd, LocalizeArgs& a, bool with_islands) {
                   "start pose x,y,theta (m, m, rad); default: first scan's pose");
   cmd->add_flag("--use-odometry", a.use_odometry, "centre the window on the odometry prediction");
   cmd->add_option("--fitness", a.fitness, "f3 (L1 sum) or f2 (beams within tolerance)")
-      ->check(CLI::IsMember({"f3", "f2"}));
+      ->check(OneOf({"f3", "f2"}));
   cmd->add_option("--f2-base", a.f2_base,
                   "F2: the tolerance at range 0, m; a grid map's cell is worth a try")
       ->check(NonNegativeNumber());
@@ -44,15 +44,15 @@ void AddLocalizeJobOptions(CLI::App* cmd, LocalizeArgs& a, bool with_islands) {
                   "papers' F3); 0.5 held best on real logs")
       ->check(NonNegativeNumber());
   cmd->add_option("--estimator", a.estimator, "2d (heading by brute force) or 3d")
-      ->check(CLI::IsMember({"2d", "3d"}));
+      ->check(OneOf({"2d", "3d"}));
   cmd->add_option("--optimizer", a.optimizer,
                   "an engine algorithm (de, jde, pso, ...), island (an island model of "
                   "--island-algorithm) or exhaustive")
-      ->check(CLI::IsMember(OptimizerNames()));
+      ->check(OneOf(OptimizerNames()));
   cmd->add_option("--preset", a.preset,
                   "start from a paper's algorithm, settings and generation count (see "
                   "docs/engine.md); options given as well override them")
-      ->check(CLI::IsMember(PresetNames()));
+      ->check(OneOf(PresetNames()));
   cmd->add_option("--strategy", a.strategy, "DE strategy, e.g. rand1exp, best1bin");
   AddDeprecatedName(cmd, "--pop",
                     cmd->add_option("--population", a.population,
@@ -73,9 +73,9 @@ void AddLocalizeJobOptions(CLI::App* cmd, LocalizeArgs& a, bool with_islands) {
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--pso-neighbourhood", a.pso_neighbourhood,
                   "PSO: follow the swarm's best (global) or the best of two ring neighbours")
-      ->check(CLI::IsMember({"global", "ring"}));
+      ->check(OneOf({"global", "ring"}));
   cmd->add_option("--crossover", a.crossover, "SGA and aGA: two-point or uniform crossover")
-      ->check(CLI::IsMember({"two-point", "uniform"}));
+      ->check(OneOf({"two-point", "uniform"}));
   cmd->add_option("--ga-grid", a.ga_grid,
                   "SGA and aGA: search grid of the binary chromosomes, m (0: none)")
       ->check(NonNegativeNumber());
@@ -88,17 +88,17 @@ void AddLocalizeJobOptions(CLI::App* cmd, LocalizeArgs& a, bool with_islands) {
   }
   cmd->add_option("--island-algorithm", a.island_algorithm,
                   "--optimizer island: the algorithm every island runs")
-      ->check(CLI::IsMember(AlgorithmKindNames()));
+      ->check(OneOf(AlgorithmKindNames()));
   cmd->add_option("--migration-interval", a.migration_interval,
                   "--optimizer island: generations between migrations")
       ->check(CLI::Range(1, 1000000));
   cmd->add_option("--migrants", a.migrants, "--optimizer island: migrants per island")
       ->check(CLI::Range(0, 100000));
   cmd->add_option("--topology", a.topology, "--optimizer island: who sends migrants to whom")
-      ->check(CLI::IsMember({"ring", "bidirectional-ring", "fully-connected", "star", "random"}));
+      ->check(OneOf({"ring", "bidirectional-ring", "fully-connected", "star", "random"}));
   cmd->add_option("--migration-policy", a.migration_policy,
                   "--optimizer island: which individuals leave and which they replace")
-      ->check(CLI::IsMember({"best-replace-worst", "random-replace"}));
+      ->check(OneOf({"best-replace-worst", "random-replace"}));
   cmd->add_option("--window", a.window, "side of the square search window, m")
       ->check(PositiveNumber());
   cmd->add_option("--heading-window", a.heading_window, "heading search half-width, degrees")

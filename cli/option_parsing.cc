@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "common/util/error.h"
+#include "common/util/nearest_name.h"
 
 namespace evoslam::cli {
 namespace {
@@ -77,6 +78,24 @@ CLI::Validator PositiveNumber() {
 
 CLI::Validator NonNegativeNumber() {
   return NumberValidator([](double v) { return v >= 0.0; }, "a number >= 0", "NONNEGATIVE");
+}
+
+CLI::Validator OneOf(std::vector<std::string> names) {
+  std::string listed, braced;
+  for (const std::string& name : names) {
+    listed += (listed.empty() ? "" : ", ") + name;
+    braced += (braced.empty() ? "{" : ",") + name;
+  }
+  return CLI::Validator(
+      [names = std::move(names), listed](std::string& value) -> std::string {
+        if (std::ranges::find(names, value) != names.end()) return "";
+        std::string message = "'" + value + "' is not one of " + listed;
+        if (const auto nearest = NearestName(value, names)) {
+          message += "; did you mean '" + *nearest + "'?";
+        }
+        return message;
+      },
+      braced + "}");
 }
 
 void CheckOutputFolder(const std::string& flag, const std::string& folder) {

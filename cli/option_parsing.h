@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "common/transform/pose2.h"
 
@@ -16,6 +17,9 @@ Pose2 ParsePose(const std::string& text, const std::string& flag);
 // the largest double).
 CLI::Validator PositiveNumber();
 CLI::Validator NonNegativeNumber();
+// One of `names`: anything else is refused with the names listed, and the nearest one as a hint
+// when it is close ("did you mean 'office-cluster'?").
+CLI::Validator OneOf(std::vector<std::string> names);
 
 // Refuses, as a command-line error naming `flag`, an output folder that a run could not write
 // into: one that is a file, or whose nearest existing folder is not writable. Creates nothing, so

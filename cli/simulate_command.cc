@@ -47,7 +47,7 @@ void AddSimulateCommand(CLI::App& app) {
   auto a = std::make_shared<SimulateArgs>();
   SimulationOptions& o = a->options;
   auto* world = cmd->add_option("--world", a->world, "built-in world: " + names)
-                    ->check(CLI::IsMember(BuiltinWorldNames()));
+                    ->check(OneOf(BuiltinWorldNames()));
   cmd->add_option("--world-file", a->world_file,
                   "any LineMap file as world (a route through its free space is chosen)")
       ->type_name("FILE")

@@ -215,7 +215,7 @@ void AddSlamCommand(CLI::App& app) {
                   fmt::format("simulate a drive with drifting odometry through this built-in "
                               "world into --out and map it (default without --log: {})",
                               kDefaultWorld))
-      ->check(CLI::IsMember(BuiltinWorldNames()))
+      ->check(OneOf(BuiltinWorldNames()))
       ->excludes(log);
   cmd->add_option("--relations", a->relations, "relations file for the relative error")
       ->type_name("FILE");

@@ -45,6 +45,17 @@ TEST_F(CliRefusalTest, AMistypedSubcommandIsAnsweredWithTheNearestOne) {
   EXPECT_THAT(far.output, HasSubstr("`evoslam --help` lists them"));
 }
 
+TEST_F(CliRefusalTest, AMistypedChoiceListsTheChoicesAndTheNearestOne) {
+  const auto world = RunCli("slam --world office-clustr --out " + Path("o"));
+  EXPECT_EQ(world.status, 2) << world.output;
+  EXPECT_THAT(world.output, HasSubstr("'office-clustr' is not one of office-boxes,"));
+  EXPECT_THAT(world.output, HasSubstr("did you mean 'office-cluster'?"));
+  const auto optimizer = RunCli("localize --optimizer jd --log x.clf --map x.lines");
+  EXPECT_EQ(optimizer.status, 2) << optimizer.output;
+  EXPECT_THAT(optimizer.output, HasSubstr("--optimizer: 'jd' is not one of"));
+  EXPECT_EQ(Entries(), 0u);
+}
+
 TEST_F(CliRefusalTest, TheLogLevelMayFollowTheSubcommand) {
   const auto r = RunCli("simulate --max-scans 3 --log-level warn --out " + Path("sim"));
   EXPECT_EQ(r.status, 0) << r.output;

@@ -38,7 +38,15 @@ std::optional<std::string> NearestName(std::string_view typed, std::span<const s
       best_distance = d;
     }
   }
-  return best;
+  if (best || typed.empty()) return best;
+  // A beginning of one name alone ("office" of "office-cluster") is what was meant too.
+  std::optional<std::string> only;
+  for (const std::string& name : names) {
+    if (!name.starts_with(typed)) continue;
+    if (only) return std::nullopt;
+    only = name;
+  }
+  return only;
 }
 
 }  // namespace evoslam

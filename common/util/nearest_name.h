@@ -14,7 +14,8 @@ namespace evoslam {
 std::size_t EditDistance(std::string_view a, std::string_view b);
 
 // The name in `names` closest to `typed`, when it is close enough to be what was meant (within a
-// third of the longer name's length, and at least one edit); for "did you mean" hints.
+// third of the longer name's length, and at least one edit), or else the only name that starts
+// with it; for "did you mean" hints.
 std::optional<std::string> NearestName(std::string_view typed, std::span<const std::string> names);
 
 }  // namespace evoslam

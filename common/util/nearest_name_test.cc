@@ -29,6 +29,14 @@ TEST(NearestNameTest, SuggestsTheClosestNameWithinReach) {
   EXPECT_EQ(NearestName("inof", names), "info");
 }
 
+TEST(NearestNameTest, SuggestsTheOnlyNameThatStartsWithIt) {
+  const std::vector<std::string> worlds = {"office-boxes", "office-cluster", "s-corridor",
+                                           "empty-room"};
+  EXPECT_EQ(NearestName("office-c", worlds), "office-cluster");
+  EXPECT_EQ(NearestName("empty", worlds), "empty-room");
+  EXPECT_FALSE(NearestName("office", worlds)) << "two names start with it";
+}
+
 TEST(NearestNameTest, SuggestsNothingForANameFarFromEvery) {
   const std::vector<std::string> names = {"info", "slam"};
   EXPECT_FALSE(NearestName("compile", names));
