@@ -13,6 +13,7 @@
 #include "common/service/job_progress.h"
 #include "common/service/job_state.h"
 #include "common/service/service_client.h"
+#include "common/util/counted.h"
 #include "common/util/error.h"
 
 namespace evoslam::cli {
@@ -113,9 +114,9 @@ void AddJobCommands(CLI::App& app) {
                     std::to_string(std::max(0L, std::lround(w.quarantined_until_unix_s() - now))) +
                     " s more (" + w.quarantine_reason() + ")";
           }
-          std::printf("%s  %s  %u threads  %s  %llu tasks done\n", w.worker_id().c_str(),
-                      w.hostname().c_str(), w.threads(), state.c_str(),
-                      static_cast<unsigned long long>(w.tasks_done()));
+          std::printf("%s  %s  %s  %s  %s done\n", w.worker_id().c_str(), w.hostname().c_str(),
+                      Counted(w.threads(), "thread").c_str(), state.c_str(),
+                      Counted(w.tasks_done(), "task").c_str());
         }
         if (workers.empty()) std::printf("no workers connected\n");
       });

@@ -191,7 +191,7 @@ start() {
       exit 1
     fi
     if listing=$(cli workers --timeout 1 2> /dev/null); then
-      connected=$(grep -c 'tasks done$' <<< "$listing" || true)
+      connected=$(grep -cE 'tasks? done$' <<< "$listing" || true)
       ((connected >= n)) && break
     fi
     if ((waited >= 300)); then

@@ -359,7 +359,7 @@ TEST_F(ServiceTest, WithCurveOnlyTheListedKeysAreServed) {
   ExpectSameTrajectory(Reference(job), Path("remote"));
   const CommandResult workers = Cli(with({"workers"}, as_client));
   ASSERT_EQ(workers.exit_code, 0) << workers.output;
-  EXPECT_EQ(Count(workers.output, " threads "), 1u) << workers.output;
+  EXPECT_EQ(Count(workers.output, " done\n"), 1u) << workers.output;
 
   // Refused clients hear nothing at all, and say so when their time is up.
   const std::vector<std::pair<std::string, std::vector<std::string>>> refused = {

@@ -64,7 +64,7 @@ TEST_F(ServiceTest, AWorkerThatCannotCacheDatasetsIsQuarantinedAndNoJobFails) {
   EXPECT_NE(c.process->Log().find("(quarantined): failed 3 tasks in a row"), std::string::npos);
   const CommandResult workers = Cli({"workers", "--coordinator", c.clients, "--timeout", "10"});
   ASSERT_EQ(workers.exit_code, 0) << workers.output;
-  EXPECT_EQ(Count(workers.output, " threads "), 2u) << workers.output;
+  EXPECT_EQ(Count(workers.output, " done\n"), 2u) << workers.output;
   EXPECT_EQ(Count(workers.output, "quarantined for "), 1u) << workers.output;
   EXPECT_NE(workers.output.find("cannot cache dataset"), std::string::npos) << workers.output;
 }

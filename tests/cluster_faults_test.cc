@@ -101,7 +101,7 @@ TEST_F(ServiceTest, AStoppedWorkersTaskGoesToAnotherAndTheWorkerRejoinsWhenConti
   EXPECT_TRUE(WaitUntil(
       [&] {
         listed = Cli({"workers", "--coordinator", job.coordinator.clients, "--timeout", "10"});
-        return listed.exit_code == 0 && Count(listed.output, " threads ") == 2;
+        return listed.exit_code == 0 && Count(listed.output, " done\n") == 2;
       },
       10s, 100ms))
       << listed.output;
