@@ -152,6 +152,9 @@ class Coordinator::Impl {
 
   CoordinatorOptions options_;
   spdlog::level::level_enum notice_;
+  // Workers' faults: warnings for a service's operator, but in an embedded run (quiet) the
+  // workers are the user's own process, and a run paused with Ctrl-Z is no fault.
+  spdlog::level::level_enum worker_warning_;
   WireLimits limits_;
   Waker waker_;
   std::optional<ZapHandler> zap_;  // bound before the CURVE sockets, as ZeroMQ requires
@@ -182,6 +185,7 @@ class Coordinator::Impl {
 Coordinator::Impl::Impl(zmq::context_t& context, CoordinatorOptions options)
     : options_(std::move(options)),
       notice_(options_.quiet ? spdlog::level::debug : spdlog::level::info),
+      worker_warning_(options_.quiet ? spdlog::level::debug : spdlog::level::warn),
       clients_(context, zmq::socket_type::router),
       workers_(context, zmq::socket_type::router),
       store_(options_.db),
@@ -248,10 +252,10 @@ void Coordinator::Impl::Run(const std::stop_token& stop) {
     if (items[2].revents & ZMQ_POLLIN) waker_.Drain();
     const Clock::time_point woke = Clock::now();
     if (woke - turned > stall) {
-      spdlog::warn(
-          "the coordinator did not run for {:.1f} s; workers not heard from since must "
-          "introduce themselves again",
-          std::chrono::duration<double>(woke - turned).count());
+      spdlog::log(worker_warning_,
+                  "the coordinator did not run for {:.1f} s; workers not heard from since must "
+                  "introduce themselves again",
+                  std::chrono::duration<double>(woke - turned).count());
       CheckWorkers(woke, true);
     }
     turned = woke;
@@ -633,8 +637,8 @@ void Coordinator::Impl::HandleWorker(const std::string& identity,
     // A worker we dropped (silent too long) or never met: it must say Ready again, and whatever
     // it answers meanwhile is a straggler's.
     if (message.has_result()) {
-      spdlog::warn("dropped a late answer for {} from worker {}", message.result().task_id(),
-                   Peer(identity));
+      spdlog::log(worker_warning_, "dropped a late answer for {} from worker {}",
+                  message.result().task_id(), Peer(identity));
     }
     proto::CoordinatorMessage bye;
     bye.mutable_disconnect()->set_reason("unknown worker: send Ready");
@@ -663,8 +667,9 @@ void Coordinator::Impl::HandleWorker(const std::string& identity,
     case proto::WorkerMessage::kResult: {
       const proto::TaskResult& result = message.result();
       if (table_.TaskOf(identity) != result.task_id()) {
-        spdlog::warn("dropped an answer for {} from worker {}: it holds another task",
-                     result.task_id(), Peer(identity));
+        spdlog::log(worker_warning_,
+                    "dropped an answer for {} from worker {}: it holds another task",
+                    result.task_id(), Peer(identity));
         break;
       }
       if (result.has_error() && result.error().code() == proto::ERROR_CODE_QUEUE_FULL) {
@@ -675,15 +680,16 @@ void Coordinator::Impl::HandleWorker(const std::string& identity,
         proto::CoordinatorMessage bye;
         bye.mutable_disconnect()->set_reason("busy with a task given to another: send Ready");
         SendTo(workers_, identity, Encode(bye));
-        spdlog::warn("worker {} was busy; {} goes to another", Peer(identity), result.task_id());
+        spdlog::log(worker_warning_, "worker {} was busy; {} goes to another", Peer(identity),
+                    result.task_id());
         break;
       }
       if (result.has_error() && result.worker_fault()) {
         // The worker's fault, not the task's: the task goes to another.
         const int faults = table_.Failed(identity);
         board_.Return(result.task_id());
-        spdlog::warn("worker {} could not run {}: {}; it goes to another", Peer(identity),
-                     result.task_id(), result.error().message().substr(0, 300));
+        spdlog::log(worker_warning_, "worker {} could not run {}: {}; it goes to another",
+                    Peer(identity), result.task_id(), result.error().message().substr(0, 300));
         if (faults >= options_.quarantine_after) {
           Quarantine(identity, "failed " + Counted(faults, "task") +
                                    " in a row: " + result.error().message().substr(0, 200));
@@ -738,8 +744,8 @@ void Coordinator::Impl::CheckWorkers(Clock::time_point now, bool stalled) {
                   task ? "; its task " + *task + " goes to another" : "");
       if (task) board_.Return(*task);
     } else {
-      spdlog::warn("worker {} is lost (silent or overdue){}", Peer(identity),
-                   task ? "; its task " + *task + " goes to another" : "");
+      spdlog::log(worker_warning_, "worker {} is lost (silent or overdue){}", Peer(identity),
+                  task ? "; its task " + *task + " goes to another" : "");
       if (task) board_.Requeue(*task);
     }
     proto::CoordinatorMessage bye;
@@ -755,8 +761,8 @@ void Coordinator::Impl::Quarantine(const std::string& identity, const std::strin
   const auto task =
       table_.Quarantine(identity, Clock::now() + Seconds(options_.quarantine_seconds), reason);
   if (task) board_.Return(*task);
-  spdlog::warn("worker {} is dropped from the pool for {:g} s (quarantined): {}", Peer(identity),
-               options_.quarantine_seconds, reason);
+  spdlog::log(worker_warning_, "worker {} is dropped from the pool for {:g} s (quarantined): {}",
+              Peer(identity), options_.quarantine_seconds, reason);
 }
 
 // ---- Jobs ----
