@@ -230,7 +230,8 @@ struct JobUnderWay : SubmittedJob {
 class ServiceTest : public ::testing::Test {
  protected:
   // One small simulated world for the whole binary (ctest runs each test in a process of its
-  // own, so there it is made once per test; it takes a few milliseconds).
+  // own, so there it is made once per test; it takes a few milliseconds), and the embedded runs'
+  // outputs that tests compare the service's with.
   static void SetUpTestSuite() {
     world_ = new evoslam::TempDir("evoslam-service-world");
     ChildProcess sim({EVOSLAM_CLI, "simulate", "--world", "s-corridor", "--noise-uniform", "0.2",
@@ -360,9 +361,11 @@ class ServiceTest : public ::testing::Test {
     return args;
   }
 
-  // The job's outputs as the embedded run writes them: what every run of it must write.
+  // The job's outputs as the embedded run writes them: what every run of it must write. Kept
+  // beside the world, so that tests run in one process (the sanitizer pass runs a binary's tests
+  // in a few) compute each job's reference once.
   fs::path Reference(const Job& job) {
-    const fs::path out = dir_ / ("reference-" + job.Key());
+    const fs::path out = world_->path() / ("reference-" + job.Key());
     if (!fs::exists(out / "trajectory.txt")) {
       const CommandResult r = Cli(LocalizeArgs(job, out.string()));
       if (r.exit_code != 0) throw std::runtime_error("the embedded run failed:\n" + r.output);
