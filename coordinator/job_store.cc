@@ -1,12 +1,10 @@
 #include "coordinator/job_store.h"
 
-#include <sodium.h>
-
-#include <array>
 #include <set>
 #include <utility>
 
 #include "common/util/error.h"
+#include "common/util/random_id.h"
 
 namespace evoslam {
 namespace {
@@ -42,17 +40,7 @@ static_assert(proto::JOB_STATE_SUCCEEDED == 3 && proto::JOB_STATE_FAILED == 4 &&
               proto::JOB_STATE_CANCELLED == 5);
 
 // 128 bits from the system's CSPRNG: a job id tells nothing of another's.
-std::string NewJobId() {
-  std::array<unsigned char, 16> bytes{};
-  randombytes_buf(bytes.data(), bytes.size());
-  std::string id = "job-";
-  for (const unsigned char b : bytes) {
-    constexpr const char* kDigits = "0123456789abcdef";
-    id += kDigits[b >> 4];
-    id += kDigits[b & 15];
-  }
-  return id;
-}
+std::string NewJobId() { return "job-" + RandomHexId(16); }
 
 // The hashes of the datasets a job's spec reads.
 std::vector<std::string> SpecDatasets(const proto::JobSpec& spec) {
@@ -67,7 +55,6 @@ std::vector<std::string> SpecDatasets(const proto::JobSpec& spec) {
 }  // namespace
 
 JobStore::JobStore(const std::filesystem::path& path) : db_(path) {
-  if (sodium_init() < 0) throw Error("libsodium cannot be initialised");
   db_.Transaction([&] {
     db_.Execute(
         "CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value INTEGER NOT NULL);"
