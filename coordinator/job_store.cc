@@ -11,7 +11,8 @@ namespace {
 
 // 2: jobs.step, the step under way inside a running job (a serialised JobStep; empty: none).
 // 3: jobs.public_id (the id clients see) and jobs.owner; dataset_owners.
-constexpr std::int64_t kSchemaVersion = 3;
+// 4: jobs.submit_id and jobs.submit_sha256, what a retried submit is recognised by.
+constexpr std::int64_t kSchemaVersion = 4;
 
 proto::JobStatus StatusFrom(Statement& row) {
   proto::JobStatus s;
@@ -66,7 +67,8 @@ JobStore::JobStore(const std::filesystem::path& path) : db_(path) {
         "  total INTEGER NOT NULL DEFAULT 0, evaluations INTEGER NOT NULL DEFAULT 0,"
         "  error TEXT NOT NULL DEFAULT '', submitted REAL NOT NULL, finished REAL NOT NULL"
         "  DEFAULT 0, step BLOB NOT NULL DEFAULT x'', public_id TEXT NOT NULL DEFAULT '',"
-        "  owner TEXT NOT NULL DEFAULT '');"
+        "  owner TEXT NOT NULL DEFAULT '', submit_id TEXT NOT NULL DEFAULT '',"
+        "  submit_sha256 TEXT NOT NULL DEFAULT '');"
         "CREATE TABLE IF NOT EXISTS dataset_owners (sha256 TEXT NOT NULL, owner TEXT NOT NULL,"
         "  size INTEGER NOT NULL, uploaded REAL NOT NULL, PRIMARY KEY (sha256, owner));"
         "CREATE TABLE IF NOT EXISTS checkpoints (job INTEGER NOT NULL REFERENCES jobs(id),"
@@ -74,7 +76,8 @@ JobStore::JobStore(const std::filesystem::path& path) : db_(path) {
         "  PRIMARY KEY (job, island));"
         "CREATE TABLE IF NOT EXISTS results (job INTEGER NOT NULL REFERENCES jobs(id),"
         "  name TEXT NOT NULL, content BLOB NOT NULL, PRIMARY KEY (job, name));"
-        "INSERT OR IGNORE INTO meta VALUES ('schema', 3);");
+        "INSERT OR IGNORE INTO meta VALUES ('schema', " +
+        std::to_string(kSchemaVersion) + ");");
     Statement schema = db_.Prepare("SELECT value FROM meta WHERE key = 'schema'");
     std::int64_t version = schema.Step() ? schema.Int(0) : 0;
     if (version == 1) {
@@ -94,11 +97,25 @@ JobStore::JobStore(const std::filesystem::path& path) : db_(path) {
           "INSERT OR IGNORE INTO dataset_owners SELECT sha256, '', length(content), 0"
           "  FROM datasets;"
           "UPDATE meta SET value = 3 WHERE key = 'schema';");
-    } else if (version != kSchemaVersion) {
+      version = 3;
+    }
+    if (version == 3) {
+      // Version 3's jobs were submitted without an id: no retried submit finds them.
+      db_.Execute(
+          "ALTER TABLE jobs ADD COLUMN submit_id TEXT NOT NULL DEFAULT '';"
+          "ALTER TABLE jobs ADD COLUMN submit_sha256 TEXT NOT NULL DEFAULT '';"
+          "UPDATE meta SET value = 4 WHERE key = 'schema';");
+      version = 4;
+    }
+    if (version != kSchemaVersion) {
       throw Error("database " + path.string() + " has schema version " + std::to_string(version) +
                   ", this build reads version " + std::to_string(kSchemaVersion));
     }
-    db_.Execute("CREATE UNIQUE INDEX IF NOT EXISTS jobs_by_public_id ON jobs (public_id);");
+    // A submit id names one job of its owner; jobs submitted without one are not indexed.
+    db_.Execute(
+        "CREATE UNIQUE INDEX IF NOT EXISTS jobs_by_public_id ON jobs (public_id);"
+        "CREATE UNIQUE INDEX IF NOT EXISTS jobs_by_submit_id ON jobs (owner, submit_id)"
+        "  WHERE submit_id != '';");
   });
 }
 
@@ -170,19 +187,31 @@ std::optional<std::string> JobStore::Dataset(const std::string& sha256) {
 }
 
 std::string JobStore::AddJob(const proto::JobSpec& spec, const std::string& owner,
-                             double now_unix_s) {
+                             double now_unix_s, const Submit& submit) {
   const std::string id = NewJobId();
   Statement insert = db_.Prepare(
-      "INSERT INTO jobs (kind, spec, state, submitted, public_id, owner)"
-      " VALUES (?1, ?2, ?3, ?4, ?5, ?6)");
+      "INSERT INTO jobs (kind, spec, state, submitted, public_id, owner, submit_id, submit_sha256)"
+      " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)");
   insert.Bind(1, static_cast<std::int64_t>(spec.kind()))
       .BindBlob(2, spec.SerializeAsString())
       .Bind(3, static_cast<std::int64_t>(proto::JOB_STATE_QUEUED))
       .Bind(4, now_unix_s)
       .Bind(5, id)
       .Bind(6, owner)
+      .Bind(7, submit.id)
+      .Bind(8, submit.spec_sha256)
       .Run();
   return id;
+}
+
+std::optional<JobStore::Submitted> JobStore::FindSubmit(const std::string& owner,
+                                                        const std::string& submit_id) {
+  if (submit_id.empty()) return std::nullopt;
+  Statement q =
+      db_.Prepare("SELECT public_id, submit_sha256 FROM jobs WHERE owner = ?1 AND submit_id = ?2");
+  q.Bind(1, owner).Bind(2, submit_id);
+  if (!q.Step()) return std::nullopt;
+  return Submitted{q.Text(0), q.Text(1)};
 }
 
 std::optional<proto::JobSpec> JobStore::Spec(const std::string& job_id) {
