@@ -110,6 +110,18 @@ std::string UserId(zmq::message_t& frame) {
   }
 }
 
+// A submit id is the client's to choose, but it is logged and stored: printable and short.
+void CheckSubmitId(const std::string& id) {
+  constexpr std::size_t kMaxSubmitId = 128;
+  const bool printable =
+      std::all_of(id.begin(), id.end(), [](char c) { return c > ' ' && c < 127; });
+  if (id.size() > kMaxSubmitId || !printable) {
+    throw ProtocolError(proto::ERROR_CODE_INVALID,
+                        "a submit id is up to " + std::to_string(kMaxSubmitId) +
+                            " printable ASCII characters without spaces");
+  }
+}
+
 }  // namespace
 
 class Coordinator::Impl {
@@ -128,7 +140,7 @@ class Coordinator::Impl {
   proto::ClientReply Handle(const std::string& identity, const Requester& requester,
                             const proto::ClientRequest& request);
   proto::ClientReply Upload(const proto::UploadDataset& upload, const Requester& requester);
-  proto::ClientReply Submit(proto::JobSpec spec, const Requester& requester);
+  proto::ClientReply Submit(const proto::SubmitJob& submit, const Requester& requester);
   proto::ClientReply Watch(const std::string& identity, const Requester& requester,
                            const proto::ClientRequest& request);
   proto::ClientReply Result(const std::string& job_id, const Requester& requester);
@@ -321,7 +333,7 @@ proto::ClientReply Coordinator::Impl::Handle(const std::string& identity,
         reply = Upload(request.upload(), requester);
         break;
       case proto::ClientRequest::kSubmit:
-        reply = Submit(request.submit().spec(), requester);
+        reply = Submit(request.submit(), requester);
         break;
       case proto::ClientRequest::kStatus:
         *reply.mutable_status() = StatusFor(request.status().job_id(), requester);
@@ -430,7 +442,31 @@ proto::ClientReply Coordinator::Impl::Upload(const proto::UploadDataset& upload,
   return reply;
 }
 
-proto::ClientReply Coordinator::Impl::Submit(proto::JobSpec spec, const Requester& requester) {
+proto::ClientReply Coordinator::Impl::Submit(const proto::SubmitJob& submit,
+                                             const Requester& requester) {
+  CheckSubmitId(submit.submit_id());
+  // The spec as the client sent it, which its retries send again byte for byte.
+  const JobStore::Submit key{submit.submit_id(), Sha256Hex(submit.spec().SerializeAsString())};
+  std::optional<JobStore::Submitted> earlier;
+  {
+    std::lock_guard lock(store_mutex_);
+    earlier = store_.FindSubmit(requester.key, key.id);
+  }
+  // A retry of a submit whose answer was lost: its job exists, and counts against no limit again.
+  // (The broker thread alone adds jobs, so none can appear under this id meanwhile.)
+  if (earlier) {
+    if (earlier->spec_sha256 != key.spec_sha256) {
+      throw ProtocolError(proto::ERROR_CODE_INVALID,
+                          "submit id " + key.id + " already made " + earlier->job_id +
+                              " with another spec; a new job needs a new submit id");
+    }
+    spdlog::log(notice_, "{}: submitted again (submit id {}); the same job", earlier->job_id,
+                key.id);
+    proto::ClientReply reply;
+    reply.mutable_accepted()->set_job_id(earlier->job_id);
+    return reply;
+  }
+  proto::JobSpec spec = submit.spec();
   PrepareJobSpec(spec);
   const auto refs = JobDatasets(spec);
   std::string id;
@@ -452,7 +488,7 @@ proto::ClientReply Coordinator::Impl::Submit(proto::JobSpec spec, const Requeste
                           "the queue is full (" + std::to_string(options_.max_queued_jobs) +
                               " jobs queued or running); try again later");
     }
-    id = store_.AddJob(spec, requester.key, UnixNow());
+    id = store_.AddJob(spec, requester.key, UnixNow(), key);
   }
   spdlog::log(notice_, "{}: queued", id);
   Schedule(id);
