@@ -761,8 +761,9 @@ void Coordinator::Impl::Dispatch() {
   while (table_.HasIdle()) {
     std::optional<proto::Task> task = board_.Take();
     if (!task) return;
+    const Clock::time_point now = Clock::now();
     const auto identity =
-        table_.Assign(task->task_id(), Clock::now() + Seconds(options_.task_timeout_seconds));
+        table_.Assign(task->task_id(), now, now + Seconds(options_.task_timeout_seconds));
     proto::CoordinatorMessage message;
     *message.mutable_task() = std::move(*task);
     SendToWorker(*identity, message);
