@@ -306,6 +306,24 @@ std::size_t JobStore::CountUnfinished() {
   return static_cast<std::size_t>(q.Int(0));
 }
 
+std::map<proto::JobState, std::uint64_t> JobStore::CountJobs() {
+  Statement q = db_.Prepare("SELECT state, COUNT(*) FROM jobs GROUP BY state");
+  std::map<proto::JobState, std::uint64_t> by_state;
+  while (q.Step()) {
+    by_state[static_cast<proto::JobState>(q.Int(0))] = static_cast<std::uint64_t>(q.Int(1));
+  }
+  return by_state;
+}
+
+std::uint64_t JobStore::TotalStoredBytes() {
+  // length() of a blob reads its size from the row's header, not its pages.
+  Statement q = db_.Prepare(
+      "SELECT (SELECT COALESCE(SUM(length(content)), 0) FROM datasets)"
+      " + (SELECT COALESCE(SUM(length(content)), 0) FROM results)");
+  q.Step();
+  return static_cast<std::uint64_t>(q.Int(0));
+}
+
 void JobStore::SaveCheckpoint(const std::string& job_id, std::uint32_t island, std::uint64_t epoch,
                               const std::string& bytes) {
   Statement upsert = db_.Prepare(

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -73,6 +74,10 @@ class JobStore {
   bool Succeed(const std::string& job_id, const std::vector<proto::ResultFile>& files,
                double now_unix_s);
   std::size_t CountUnfinished();
+  // The jobs kept, by state; a state no job is in is absent.
+  std::map<proto::JobState, std::uint64_t> CountJobs();
+  // The bytes of every dataset and every job's result kept, each stored once.
+  std::uint64_t TotalStoredBytes();
 
   // A job's latest checkpoints, one per slot (a localization keeps one, its whole state; an
   // island job may keep one per island), replaced as the job advances.

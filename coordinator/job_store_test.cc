@@ -6,6 +6,7 @@
 
 #include <csignal>
 #include <fstream>
+#include <map>
 #include <set>
 
 #include "common/util/error.h"
@@ -312,6 +313,28 @@ TEST_F(JobStoreTest, CollectingAJobDropsItsSubmitId) {
   const std::string again = store.AddJob(LocalizeSpec(1), "k", 100.0, {"s-1", "hash"});
   EXPECT_NE(again, old);
   EXPECT_EQ(store.FindSubmit("k", "s-1")->job_id, again);
+}
+
+// What the metrics report: jobs by state, and the bytes kept, a dataset two owners hold once.
+TEST_F(JobStoreTest, CountsJobsByStateAndTheBytesKept) {
+  JobStore store(Db());
+  EXPECT_TRUE(store.CountJobs().empty());
+  EXPECT_EQ(store.TotalStoredBytes(), 0u);
+  const std::string a = store.AddJob(LocalizeSpec(1), "", 1.0);
+  const std::string b = store.AddJob(LocalizeSpec(2), "", 1.0);
+  store.AddJob(LocalizeSpec(3), "", 1.0);
+  store.SetRunning(a, Progress("localize", 1, 2, 3));
+  proto::ResultFile report;
+  report.set_name("report.json");
+  report.set_content("{\"ok\": 1}");
+  EXPECT_TRUE(store.Succeed(b, {report}, 2.0));
+  EXPECT_EQ(store.CountJobs(),
+            (std::map<proto::JobState, std::uint64_t>{{proto::JOB_STATE_QUEUED, 1},
+                                                      {proto::JOB_STATE_RUNNING, 1},
+                                                      {proto::JOB_STATE_SUCCEEDED, 1}}));
+  store.PutDataset(std::string(64, 'c'), "log.clf", "12345", "alice", 1.0);
+  store.PutDataset(std::string(64, 'c'), "log.clf", "12345", "bob", 1.0);
+  EXPECT_EQ(store.TotalStoredBytes(), 5u + 9u);
 }
 
 TEST_F(JobStoreTest, UnknownAndMalformedJobIdsFindNothing) {
