@@ -29,6 +29,8 @@
 #include "coordinator/job_context.h"
 #include "coordinator/job_kinds.h"
 #include "coordinator/job_store.h"
+#include "coordinator/metrics.h"
+#include "coordinator/metrics_server.h"
 #include "coordinator/progress_throttle.h"
 #include "coordinator/task_board.h"
 #include "coordinator/worker_table.h"
@@ -132,6 +134,7 @@ class Coordinator::Impl {
 
   std::string clients_endpoint() const { return clients_.get(zmq::sockopt::last_endpoint); }
   std::string workers_endpoint() const { return workers_.get(zmq::sockopt::last_endpoint); }
+  std::string metrics_url() const { return metrics_server_ ? metrics_server_->url() : ""; }
 
  private:
   // Broker thread.
@@ -151,6 +154,8 @@ class Coordinator::Impl {
   void CheckWorkers(Clock::time_point now, bool stalled = false);
   void Quarantine(const std::string& identity, const std::string& reason);
   void FlushEvents();
+  // Brings the figures the metrics do not get as they happen up to date.
+  void RefreshMetrics(Clock::time_point now);
   proto::JobStatus StatusOf(const std::string& job_id);
   // StatusOf a job `requester` may see; any other is UNKNOWN_JOB, as if it did not exist.
   proto::JobStatus StatusFor(const std::string& job_id, const Requester& requester);
@@ -184,6 +189,10 @@ class Coordinator::Impl {
   std::multimap<std::string, Watcher> watchers_;  // broker thread only
   Clock::time_point next_heartbeat_;
   Clock::time_point next_collection_;
+  Clock::time_point next_metrics_;
+
+  Metrics metrics_;
+  std::optional<MetricsServer> metrics_server_;  // reads metrics_ alone, on threads of its own
 
   std::mutex jobs_mutex_;
   std::condition_variable jobs_cv_;
@@ -229,6 +238,9 @@ Coordinator::Impl::Impl(zmq::context_t& context, CoordinatorOptions options)
   }
   Bind(clients_, options_.clients_endpoint, "clients");
   Bind(workers_, options_.workers_endpoint, "workers");
+  if (options_.metrics_address) {
+    metrics_server_.emplace(*options_.metrics_address, [this] { return metrics_.Render(); });
+  }
 
   Collect();
   for (const std::string& id : store_.Unfinished()) runnable_.push_back(id);
@@ -245,8 +257,9 @@ Coordinator::Impl::~Impl() {
 }
 
 void Coordinator::Impl::Run(const std::stop_token& stop) {
-  spdlog::log(notice_, "coordinator: clients on {}, workers on {}{}", clients_endpoint(),
-              workers_endpoint(), zap_ ? ", CURVE on" : "");
+  spdlog::log(notice_, "coordinator: clients on {}, workers on {}{}{}", clients_endpoint(),
+              workers_endpoint(), metrics_server_ ? ", metrics on " + metrics_url() : "",
+              zap_ ? ", CURVE on" : "");
   next_heartbeat_ = Clock::now();
   // Longer than this between two turns of the loop, the process was stopped or starved: its
   // workers gave up on it meanwhile, and what its sockets hold from them is stale.
@@ -286,6 +299,7 @@ void Coordinator::Impl::Run(const std::stop_token& stop) {
     FlushEvents();
     worker_threads_ = table_.threads();
     if (options_.retention_seconds > 0 && now >= next_collection_) Collect();
+    if (metrics_server_ && now >= next_metrics_) RefreshMetrics(now);
   }
   spdlog::log(notice_, "coordinator: stopping; running jobs resume at the next start");
 }
@@ -329,9 +343,11 @@ proto::ClientReply Coordinator::Impl::Handle(const std::string& identity,
   proto::ClientReply reply;
   try {
     switch (request.request_case()) {
-      case proto::ClientRequest::kUpload:
+      case proto::ClientRequest::kUpload: {
+        const Metrics::UploadInProgress uploading(metrics_);
         reply = Upload(request.upload(), requester);
         break;
+      }
       case proto::ClientRequest::kSubmit:
         reply = Submit(request.submit(), requester);
         break;
@@ -462,6 +478,7 @@ proto::ClientReply Coordinator::Impl::Submit(const proto::SubmitJob& submit,
     }
     spdlog::log(notice_, "{}: submitted again (submit id {}); the same job", earlier->job_id,
                 key.id);
+    metrics_.CountRepeatedSubmit();
     proto::ClientReply reply;
     reply.mutable_accepted()->set_job_id(earlier->job_id);
     return reply;
@@ -491,6 +508,7 @@ proto::ClientReply Coordinator::Impl::Submit(const proto::SubmitJob& submit,
     id = store_.AddJob(spec, requester.key, UnixNow(), key);
   }
   spdlog::log(notice_, "{}: queued", id);
+  metrics_.CountSubmit();
   Schedule(id);
   proto::ClientReply reply;
   reply.mutable_accepted()->set_job_id(id);
@@ -587,6 +605,24 @@ void Coordinator::Impl::FlushEvents() {
       it = (finished || !delivered) ? watchers_.erase(it) : std::next(it);
     }
   }
+}
+
+void Coordinator::Impl::RefreshMetrics(Clock::time_point now) {
+  // Twice a second: a scrape (every 15 s, typically) sees figures at most half a second old, and
+  // the database's counts cost little.
+  next_metrics_ = now + std::chrono::milliseconds(500);
+  const std::size_t quarantined = table_.quarantined();
+  metrics_.SetWorkers(table_.size() - quarantined, quarantined);
+  metrics_.SetTasks(table_.busy(), board_.waiting());
+  std::map<proto::JobState, std::uint64_t> jobs;
+  std::uint64_t stored = 0;
+  {
+    std::lock_guard lock(store_mutex_);
+    jobs = store_.CountJobs();
+    stored = store_.TotalStoredBytes();
+  }
+  metrics_.SetJobs(jobs);
+  metrics_.SetStoredBytes(stored);
 }
 
 void Coordinator::Impl::Collect() {
@@ -738,9 +774,12 @@ void Coordinator::Impl::HandleWorker(const std::string& identity,
         Quarantine(identity, "sent an invalid result for " + result.task_id() + ": " + *invalid);
         break;
       }
+      const auto held = table_.HeldFor(identity, now);
       table_.Done(identity);
       if (!board_.Complete(result)) {
         spdlog::debug("dropped the answer for {}: nobody waits for it", result.task_id());
+      } else if (held) {
+        metrics_.ObserveTaskLatency(std::chrono::duration<double>(*held).count());
       }
       break;
     }
@@ -910,5 +949,6 @@ Coordinator::~Coordinator() = default;
 void Coordinator::Run(std::stop_token stop) { impl_->Run(stop); }
 std::string Coordinator::clients_endpoint() const { return impl_->clients_endpoint(); }
 std::string Coordinator::workers_endpoint() const { return impl_->workers_endpoint(); }
+std::string Coordinator::metrics_url() const { return impl_->metrics_url(); }
 
 }  // namespace evoslam
