@@ -29,6 +29,8 @@
 #include "coordinator/job_context.h"
 #include "coordinator/job_kinds.h"
 #include "coordinator/job_store.h"
+#include "coordinator/metrics.h"
+#include "coordinator/metrics_server.h"
 #include "coordinator/progress_throttle.h"
 #include "coordinator/task_board.h"
 #include "coordinator/worker_table.h"
@@ -110,6 +112,18 @@ std::string UserId(zmq::message_t& frame) {
   }
 }
 
+// A submit id is the client's to choose, but it is logged and stored: printable and short.
+void CheckSubmitId(const std::string& id) {
+  constexpr std::size_t kMaxSubmitId = 128;
+  const bool printable =
+      std::all_of(id.begin(), id.end(), [](char c) { return c > ' ' && c < 127; });
+  if (id.size() > kMaxSubmitId || !printable) {
+    throw ProtocolError(proto::ERROR_CODE_INVALID,
+                        "a submit id is up to " + std::to_string(kMaxSubmitId) +
+                            " printable ASCII characters without spaces");
+  }
+}
+
 }  // namespace
 
 class Coordinator::Impl {
@@ -120,6 +134,7 @@ class Coordinator::Impl {
 
   std::string clients_endpoint() const { return clients_.get(zmq::sockopt::last_endpoint); }
   std::string workers_endpoint() const { return workers_.get(zmq::sockopt::last_endpoint); }
+  std::string metrics_url() const { return metrics_server_ ? metrics_server_->url() : ""; }
 
  private:
   // Broker thread.
@@ -128,7 +143,7 @@ class Coordinator::Impl {
   proto::ClientReply Handle(const std::string& identity, const Requester& requester,
                             const proto::ClientRequest& request);
   proto::ClientReply Upload(const proto::UploadDataset& upload, const Requester& requester);
-  proto::ClientReply Submit(proto::JobSpec spec, const Requester& requester);
+  proto::ClientReply Submit(const proto::SubmitJob& submit, const Requester& requester);
   proto::ClientReply Watch(const std::string& identity, const Requester& requester,
                            const proto::ClientRequest& request);
   proto::ClientReply Result(const std::string& job_id, const Requester& requester);
@@ -139,6 +154,8 @@ class Coordinator::Impl {
   void CheckWorkers(Clock::time_point now, bool stalled = false);
   void Quarantine(const std::string& identity, const std::string& reason);
   void FlushEvents();
+  // Brings the figures the metrics do not get as they happen up to date.
+  void RefreshMetrics(Clock::time_point now);
   proto::JobStatus StatusOf(const std::string& job_id);
   // StatusOf a job `requester` may see; any other is UNKNOWN_JOB, as if it did not exist.
   proto::JobStatus StatusFor(const std::string& job_id, const Requester& requester);
@@ -172,6 +189,10 @@ class Coordinator::Impl {
   std::multimap<std::string, Watcher> watchers_;  // broker thread only
   Clock::time_point next_heartbeat_;
   Clock::time_point next_collection_;
+  Clock::time_point next_metrics_;
+
+  Metrics metrics_;
+  std::optional<MetricsServer> metrics_server_;  // reads metrics_ alone, on threads of its own
 
   std::mutex jobs_mutex_;
   std::condition_variable jobs_cv_;
@@ -217,6 +238,9 @@ Coordinator::Impl::Impl(zmq::context_t& context, CoordinatorOptions options)
   }
   Bind(clients_, options_.clients_endpoint, "clients");
   Bind(workers_, options_.workers_endpoint, "workers");
+  if (options_.metrics_address) {
+    metrics_server_.emplace(*options_.metrics_address, [this] { return metrics_.Render(); });
+  }
 
   Collect();
   for (const std::string& id : store_.Unfinished()) runnable_.push_back(id);
@@ -233,8 +257,9 @@ Coordinator::Impl::~Impl() {
 }
 
 void Coordinator::Impl::Run(const std::stop_token& stop) {
-  spdlog::log(notice_, "coordinator: clients on {}, workers on {}{}", clients_endpoint(),
-              workers_endpoint(), zap_ ? ", CURVE on" : "");
+  spdlog::log(notice_, "coordinator: clients on {}, workers on {}{}{}", clients_endpoint(),
+              workers_endpoint(), metrics_server_ ? ", metrics on " + metrics_url() : "",
+              zap_ ? ", CURVE on" : "");
   next_heartbeat_ = Clock::now();
   // Longer than this between two turns of the loop, the process was stopped or starved: its
   // workers gave up on it meanwhile, and what its sockets hold from them is stale.
@@ -274,6 +299,7 @@ void Coordinator::Impl::Run(const std::stop_token& stop) {
     FlushEvents();
     worker_threads_ = table_.threads();
     if (options_.retention_seconds > 0 && now >= next_collection_) Collect();
+    if (metrics_server_ && now >= next_metrics_) RefreshMetrics(now);
   }
   spdlog::log(notice_, "coordinator: stopping; running jobs resume at the next start");
 }
@@ -317,11 +343,13 @@ proto::ClientReply Coordinator::Impl::Handle(const std::string& identity,
   proto::ClientReply reply;
   try {
     switch (request.request_case()) {
-      case proto::ClientRequest::kUpload:
+      case proto::ClientRequest::kUpload: {
+        const Metrics::UploadInProgress uploading(metrics_);
         reply = Upload(request.upload(), requester);
         break;
+      }
       case proto::ClientRequest::kSubmit:
-        reply = Submit(request.submit().spec(), requester);
+        reply = Submit(request.submit(), requester);
         break;
       case proto::ClientRequest::kStatus:
         *reply.mutable_status() = StatusFor(request.status().job_id(), requester);
@@ -430,7 +458,32 @@ proto::ClientReply Coordinator::Impl::Upload(const proto::UploadDataset& upload,
   return reply;
 }
 
-proto::ClientReply Coordinator::Impl::Submit(proto::JobSpec spec, const Requester& requester) {
+proto::ClientReply Coordinator::Impl::Submit(const proto::SubmitJob& submit,
+                                             const Requester& requester) {
+  CheckSubmitId(submit.submit_id());
+  // The spec as the client sent it, which its retries send again byte for byte.
+  const JobStore::Submit key{submit.submit_id(), Sha256Hex(submit.spec().SerializeAsString())};
+  std::optional<JobStore::Submitted> earlier;
+  {
+    std::lock_guard lock(store_mutex_);
+    earlier = store_.FindSubmit(requester.key, key.id);
+  }
+  // A retry of a submit whose answer was lost: its job exists, and counts against no limit again.
+  // (The broker thread alone adds jobs, so none can appear under this id meanwhile.)
+  if (earlier) {
+    if (earlier->spec_sha256 != key.spec_sha256) {
+      throw ProtocolError(proto::ERROR_CODE_INVALID,
+                          "submit id " + key.id + " already made " + earlier->job_id +
+                              " with another spec; a new job needs a new submit id");
+    }
+    spdlog::log(notice_, "{}: submitted again (submit id {}); the same job", earlier->job_id,
+                key.id);
+    metrics_.CountRepeatedSubmit();
+    proto::ClientReply reply;
+    reply.mutable_accepted()->set_job_id(earlier->job_id);
+    return reply;
+  }
+  proto::JobSpec spec = submit.spec();
   PrepareJobSpec(spec);
   const auto refs = JobDatasets(spec);
   std::string id;
@@ -452,9 +505,10 @@ proto::ClientReply Coordinator::Impl::Submit(proto::JobSpec spec, const Requeste
                           "the queue is full (" + std::to_string(options_.max_queued_jobs) +
                               " jobs queued or running); try again later");
     }
-    id = store_.AddJob(spec, requester.key, UnixNow());
+    id = store_.AddJob(spec, requester.key, UnixNow(), key);
   }
   spdlog::log(notice_, "{}: queued", id);
+  metrics_.CountSubmit();
   Schedule(id);
   proto::ClientReply reply;
   reply.mutable_accepted()->set_job_id(id);
@@ -551,6 +605,24 @@ void Coordinator::Impl::FlushEvents() {
       it = (finished || !delivered) ? watchers_.erase(it) : std::next(it);
     }
   }
+}
+
+void Coordinator::Impl::RefreshMetrics(Clock::time_point now) {
+  // Twice a second: a scrape (every 15 s, typically) sees figures at most half a second old, and
+  // the database's counts cost little.
+  next_metrics_ = now + std::chrono::milliseconds(500);
+  const std::size_t quarantined = table_.quarantined();
+  metrics_.SetWorkers(table_.size() - quarantined, quarantined);
+  metrics_.SetTasks(table_.busy(), board_.waiting());
+  std::map<proto::JobState, std::uint64_t> jobs;
+  std::uint64_t stored = 0;
+  {
+    std::lock_guard lock(store_mutex_);
+    jobs = store_.CountJobs();
+    stored = store_.TotalStoredBytes();
+  }
+  metrics_.SetJobs(jobs);
+  metrics_.SetStoredBytes(stored);
 }
 
 void Coordinator::Impl::Collect() {
@@ -702,9 +774,12 @@ void Coordinator::Impl::HandleWorker(const std::string& identity,
         Quarantine(identity, "sent an invalid result for " + result.task_id() + ": " + *invalid);
         break;
       }
+      const auto held = table_.HeldFor(identity, now);
       table_.Done(identity);
       if (!board_.Complete(result)) {
         spdlog::debug("dropped the answer for {}: nobody waits for it", result.task_id());
+      } else if (held) {
+        metrics_.ObserveTaskLatency(std::chrono::duration<double>(*held).count());
       }
       break;
     }
@@ -725,8 +800,9 @@ void Coordinator::Impl::Dispatch() {
   while (table_.HasIdle()) {
     std::optional<proto::Task> task = board_.Take();
     if (!task) return;
+    const Clock::time_point now = Clock::now();
     const auto identity =
-        table_.Assign(task->task_id(), Clock::now() + Seconds(options_.task_timeout_seconds));
+        table_.Assign(task->task_id(), now, now + Seconds(options_.task_timeout_seconds));
     proto::CoordinatorMessage message;
     *message.mutable_task() = std::move(*task);
     SendToWorker(*identity, message);
@@ -873,5 +949,6 @@ Coordinator::~Coordinator() = default;
 void Coordinator::Run(std::stop_token stop) { impl_->Run(stop); }
 std::string Coordinator::clients_endpoint() const { return impl_->clients_endpoint(); }
 std::string Coordinator::workers_endpoint() const { return impl_->workers_endpoint(); }
+std::string Coordinator::metrics_url() const { return impl_->metrics_url(); }
 
 }  // namespace evoslam

@@ -7,9 +7,12 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <set>
 #include <stop_token>
 #include <string>
+
+#include "coordinator/http_address.h"
 
 namespace evoslam {
 
@@ -51,6 +54,8 @@ struct CoordinatorOptions {
   // but jobs of many millisecond epochs are not slowed by a database write each.
   double checkpoint_seconds = 1.0;
   bool quiet = false;  // comings and goings logged at debug level instead of info (embedded)
+  // Where to serve Prometheus metrics over HTTP, at /metrics; none: nowhere.
+  std::optional<HttpAddress> metrics_address;
 };
 
 // The service's hub. Clients submit jobs on one ROUTER socket; workers take tasks on another,
@@ -62,8 +67,8 @@ struct CoordinatorOptions {
 // from its last checkpoint.
 class Coordinator {
  public:
-  // Opens the database, binds both sockets (throws Error naming the endpoint when one cannot be
-  // bound) and queues the unfinished jobs found in the database.
+  // Opens the database, binds both sockets and the metrics' HTTP server (throws Error naming the
+  // endpoint when one cannot be bound) and queues the unfinished jobs found in the database.
   Coordinator(zmq::context_t& context, CoordinatorOptions options);
   ~Coordinator();
   Coordinator(const Coordinator&) = delete;
@@ -75,6 +80,9 @@ class Coordinator {
   // The endpoints actually bound (a tcp port 0 or '*' resolved).
   std::string clients_endpoint() const;
   std::string workers_endpoint() const;
+  // Where the metrics are served, "http://HOST:PORT/metrics" (a port 0 resolved); empty when
+  // they are not.
+  std::string metrics_url() const;
 
  private:
   class Impl;

@@ -13,6 +13,7 @@
 #include "common/util/program_options.h"
 #include "common/util/stop_signals.h"
 #include "coordinator/coordinator.h"
+#include "coordinator/http_address.h"
 
 int main(int argc, char** argv) {
   evoslam::StopSignals signals;  // first, so every thread inherits the blocked signals
@@ -85,10 +86,26 @@ int main(int argc, char** argv) {
          "least seconds between two saved checkpoints of a job (0: at every migration epoch)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1e6));
+  std::string metrics;
+  app.add_option("--metrics", metrics,
+                 "serve Prometheus metrics over HTTP at http://HOST:PORT/metrics "
+                 "(e.g. 127.0.0.1:9464; port 0: any free port)")
+      ->type_name("HOST:PORT")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            try {
+              evoslam::ParseHttpAddress(text);
+              return {};
+            } catch (const evoslam::Error& e) {
+              return e.what();
+            }
+          },
+          ""));
   bool insecure = false;
   app.add_flag("--insecure", insecure,
                "listen on addresses other hosts reach without CURVE (anyone who reaches them "
-               "may submit, list and cancel jobs, or work as a worker)");
+               "may submit, list and cancel jobs, or work as a worker), and serve --metrics to "
+               "them");
   evoslam::AddLogLevelOption(app, log_level);
   if (const auto status = evoslam::ParseProgramOptions(app, argc, argv, log_level)) return *status;
   try {
@@ -122,6 +139,21 @@ int main(int argc, char** argv) {
             "listening on {} without CURVE (--insecure): anyone who reaches it may "
             "submit, read and cancel jobs, or pose as a worker",
             endpoint);
+      }
+    }
+    if (!metrics.empty()) {
+      options.metrics_address = evoslam::ParseHttpAddress(metrics);
+      // CURVE or not: the metrics are plain HTTP, with no key to ask for.
+      if (!options.metrics_address->IsLoopback()) {
+        if (!insecure) {
+          spdlog::error(
+              "refusing to serve metrics on {}: anyone who reaches it could read them (jobs, "
+              "workers, bytes stored); serve them on 127.0.0.1 for a scraper on this host (or "
+              "behind a proxy), or give --insecure to serve them so on a network you trust",
+              metrics);
+          return 2;
+        }
+        spdlog::warn("serving metrics on {} to anyone who reaches it (--insecure)", metrics);
       }
     }
     zmq::context_t context;

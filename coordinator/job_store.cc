@@ -1,19 +1,18 @@
 #include "coordinator/job_store.h"
 
-#include <sodium.h>
-
-#include <array>
 #include <set>
 #include <utility>
 
 #include "common/util/error.h"
+#include "common/util/random_id.h"
 
 namespace evoslam {
 namespace {
 
 // 2: jobs.step, the step under way inside a running job (a serialised JobStep; empty: none).
 // 3: jobs.public_id (the id clients see) and jobs.owner; dataset_owners.
-constexpr std::int64_t kSchemaVersion = 3;
+// 4: jobs.submit_id and jobs.submit_sha256, what a retried submit is recognised by.
+constexpr std::int64_t kSchemaVersion = 4;
 
 proto::JobStatus StatusFrom(Statement& row) {
   proto::JobStatus s;
@@ -42,17 +41,7 @@ static_assert(proto::JOB_STATE_SUCCEEDED == 3 && proto::JOB_STATE_FAILED == 4 &&
               proto::JOB_STATE_CANCELLED == 5);
 
 // 128 bits from the system's CSPRNG: a job id tells nothing of another's.
-std::string NewJobId() {
-  std::array<unsigned char, 16> bytes{};
-  randombytes_buf(bytes.data(), bytes.size());
-  std::string id = "job-";
-  for (const unsigned char b : bytes) {
-    constexpr const char* kDigits = "0123456789abcdef";
-    id += kDigits[b >> 4];
-    id += kDigits[b & 15];
-  }
-  return id;
-}
+std::string NewJobId() { return "job-" + RandomHexId(16); }
 
 // The hashes of the datasets a job's spec reads.
 std::vector<std::string> SpecDatasets(const proto::JobSpec& spec) {
@@ -67,7 +56,6 @@ std::vector<std::string> SpecDatasets(const proto::JobSpec& spec) {
 }  // namespace
 
 JobStore::JobStore(const std::filesystem::path& path) : db_(path) {
-  if (sodium_init() < 0) throw Error("libsodium cannot be initialised");
   db_.Transaction([&] {
     db_.Execute(
         "CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value INTEGER NOT NULL);"
@@ -79,7 +67,8 @@ JobStore::JobStore(const std::filesystem::path& path) : db_(path) {
         "  total INTEGER NOT NULL DEFAULT 0, evaluations INTEGER NOT NULL DEFAULT 0,"
         "  error TEXT NOT NULL DEFAULT '', submitted REAL NOT NULL, finished REAL NOT NULL"
         "  DEFAULT 0, step BLOB NOT NULL DEFAULT x'', public_id TEXT NOT NULL DEFAULT '',"
-        "  owner TEXT NOT NULL DEFAULT '');"
+        "  owner TEXT NOT NULL DEFAULT '', submit_id TEXT NOT NULL DEFAULT '',"
+        "  submit_sha256 TEXT NOT NULL DEFAULT '');"
         "CREATE TABLE IF NOT EXISTS dataset_owners (sha256 TEXT NOT NULL, owner TEXT NOT NULL,"
         "  size INTEGER NOT NULL, uploaded REAL NOT NULL, PRIMARY KEY (sha256, owner));"
         "CREATE TABLE IF NOT EXISTS checkpoints (job INTEGER NOT NULL REFERENCES jobs(id),"
@@ -87,7 +76,8 @@ JobStore::JobStore(const std::filesystem::path& path) : db_(path) {
         "  PRIMARY KEY (job, island));"
         "CREATE TABLE IF NOT EXISTS results (job INTEGER NOT NULL REFERENCES jobs(id),"
         "  name TEXT NOT NULL, content BLOB NOT NULL, PRIMARY KEY (job, name));"
-        "INSERT OR IGNORE INTO meta VALUES ('schema', 3);");
+        "INSERT OR IGNORE INTO meta VALUES ('schema', " +
+        std::to_string(kSchemaVersion) + ");");
     Statement schema = db_.Prepare("SELECT value FROM meta WHERE key = 'schema'");
     std::int64_t version = schema.Step() ? schema.Int(0) : 0;
     if (version == 1) {
@@ -107,11 +97,25 @@ JobStore::JobStore(const std::filesystem::path& path) : db_(path) {
           "INSERT OR IGNORE INTO dataset_owners SELECT sha256, '', length(content), 0"
           "  FROM datasets;"
           "UPDATE meta SET value = 3 WHERE key = 'schema';");
-    } else if (version != kSchemaVersion) {
+      version = 3;
+    }
+    if (version == 3) {
+      // Version 3's jobs were submitted without an id: no retried submit finds them.
+      db_.Execute(
+          "ALTER TABLE jobs ADD COLUMN submit_id TEXT NOT NULL DEFAULT '';"
+          "ALTER TABLE jobs ADD COLUMN submit_sha256 TEXT NOT NULL DEFAULT '';"
+          "UPDATE meta SET value = 4 WHERE key = 'schema';");
+      version = 4;
+    }
+    if (version != kSchemaVersion) {
       throw Error("database " + path.string() + " has schema version " + std::to_string(version) +
                   ", this build reads version " + std::to_string(kSchemaVersion));
     }
-    db_.Execute("CREATE UNIQUE INDEX IF NOT EXISTS jobs_by_public_id ON jobs (public_id);");
+    // A submit id names one job of its owner; jobs submitted without one are not indexed.
+    db_.Execute(
+        "CREATE UNIQUE INDEX IF NOT EXISTS jobs_by_public_id ON jobs (public_id);"
+        "CREATE UNIQUE INDEX IF NOT EXISTS jobs_by_submit_id ON jobs (owner, submit_id)"
+        "  WHERE submit_id != '';");
   });
 }
 
@@ -183,19 +187,31 @@ std::optional<std::string> JobStore::Dataset(const std::string& sha256) {
 }
 
 std::string JobStore::AddJob(const proto::JobSpec& spec, const std::string& owner,
-                             double now_unix_s) {
+                             double now_unix_s, const Submit& submit) {
   const std::string id = NewJobId();
   Statement insert = db_.Prepare(
-      "INSERT INTO jobs (kind, spec, state, submitted, public_id, owner)"
-      " VALUES (?1, ?2, ?3, ?4, ?5, ?6)");
+      "INSERT INTO jobs (kind, spec, state, submitted, public_id, owner, submit_id, submit_sha256)"
+      " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)");
   insert.Bind(1, static_cast<std::int64_t>(spec.kind()))
       .BindBlob(2, spec.SerializeAsString())
       .Bind(3, static_cast<std::int64_t>(proto::JOB_STATE_QUEUED))
       .Bind(4, now_unix_s)
       .Bind(5, id)
       .Bind(6, owner)
+      .Bind(7, submit.id)
+      .Bind(8, submit.spec_sha256)
       .Run();
   return id;
+}
+
+std::optional<JobStore::Submitted> JobStore::FindSubmit(const std::string& owner,
+                                                        const std::string& submit_id) {
+  if (submit_id.empty()) return std::nullopt;
+  Statement q =
+      db_.Prepare("SELECT public_id, submit_sha256 FROM jobs WHERE owner = ?1 AND submit_id = ?2");
+  q.Bind(1, owner).Bind(2, submit_id);
+  if (!q.Step()) return std::nullopt;
+  return Submitted{q.Text(0), q.Text(1)};
 }
 
 std::optional<proto::JobSpec> JobStore::Spec(const std::string& job_id) {
@@ -288,6 +304,24 @@ std::size_t JobStore::CountUnfinished() {
       .Bind(2, static_cast<std::int64_t>(proto::JOB_STATE_RUNNING));
   q.Step();
   return static_cast<std::size_t>(q.Int(0));
+}
+
+std::map<proto::JobState, std::uint64_t> JobStore::CountJobs() {
+  Statement q = db_.Prepare("SELECT state, COUNT(*) FROM jobs GROUP BY state");
+  std::map<proto::JobState, std::uint64_t> by_state;
+  while (q.Step()) {
+    by_state[static_cast<proto::JobState>(q.Int(0))] = static_cast<std::uint64_t>(q.Int(1));
+  }
+  return by_state;
+}
+
+std::uint64_t JobStore::TotalStoredBytes() {
+  // length() of a blob reads its size from the row's header, not its pages.
+  Statement q = db_.Prepare(
+      "SELECT (SELECT COALESCE(SUM(length(content)), 0) FROM datasets)"
+      " + (SELECT COALESCE(SUM(length(content)), 0) FROM results)");
+  q.Step();
+  return static_cast<std::uint64_t>(q.Int(0));
 }
 
 void JobStore::SaveCheckpoint(const std::string& job_id, std::uint32_t island, std::uint64_t epoch,

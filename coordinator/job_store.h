@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -35,9 +36,24 @@ class JobStore {
   // The bytes `owner` keeps here: the datasets it holds and its jobs' results.
   std::uint64_t StoredBytes(const std::string& owner);
 
+  // What a client's submit is known by: the id the client chose for it, the same in every retry
+  // of the one submit (empty: none, every such submit is a new job), and the SHA-256 of the spec
+  // it sent, which tells a retry from another job reusing the id.
+  struct Submit {
+    std::string id;
+    std::string spec_sha256;
+  };
   // A new job of `owner` in state QUEUED; returns its id, "job-" and 32 random hex digits, which
-  // nobody can guess.
-  std::string AddJob(const proto::JobSpec& spec, const std::string& owner, double now_unix_s);
+  // nobody can guess. A non-empty submit id names at most one job of an owner: a second throws.
+  std::string AddJob(const proto::JobSpec& spec, const std::string& owner, double now_unix_s,
+                     const Submit& submit = {});
+  // The job `owner` submitted under `submit_id`, while it is kept (Collect drops it, and its
+  // submit id with it); nullopt when there is none or the id is empty.
+  struct Submitted {
+    std::string job_id;
+    std::string spec_sha256;
+  };
+  std::optional<Submitted> FindSubmit(const std::string& owner, const std::string& submit_id);
   std::optional<proto::JobSpec> Spec(const std::string& job_id);
   std::optional<proto::JobStatus> Status(const std::string& job_id);
   std::optional<std::string> Owner(const std::string& job_id);
@@ -58,6 +74,10 @@ class JobStore {
   bool Succeed(const std::string& job_id, const std::vector<proto::ResultFile>& files,
                double now_unix_s);
   std::size_t CountUnfinished();
+  // The jobs kept, by state; a state no job is in is absent.
+  std::map<proto::JobState, std::uint64_t> CountJobs();
+  // The bytes of every dataset and every job's result kept, each stored once.
+  std::uint64_t TotalStoredBytes();
 
   // A job's latest checkpoints, one per slot (a localization keeps one, its whole state; an
   // island job may keep one per island), replaced as the job advances.

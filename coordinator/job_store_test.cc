@@ -6,6 +6,7 @@
 
 #include <csignal>
 #include <fstream>
+#include <map>
 #include <set>
 
 #include "common/util/error.h"
@@ -171,8 +172,8 @@ TEST_F(JobStoreTest, AJobsStepIsKeptUntilItEnds) {
   EXPECT_FALSE(read.has_step());
 }
 
-// A database of schema version 1 (no step) opens as version 3, its jobs without a step, keeping
-// their ids, and owned by "", the owner of every client without CURVE.
+// A database of schema version 1 (no step) opens as the current version, its jobs without a step,
+// keeping their ids, and owned by "", the owner of every client without CURVE.
 TEST_F(JobStoreTest, AVersion1DatabaseGainsTheStepAndOwners) {
   {
     Database v1(Db());
@@ -202,7 +203,7 @@ TEST_F(JobStoreTest, AVersion1DatabaseGainsTheStepAndOwners) {
     searching.mutable_step()->set_name("global search");
     store.SetRunning("job-1", searching);
   }
-  JobStore store(Db());  // now version 3
+  JobStore store(Db());  // now the current version
   EXPECT_EQ(store.Status("job-1")->step().name(), "global search");
   EXPECT_EQ(store.Owner("job-1"), "");
   EXPECT_TRUE(store.OwnsDataset(std::string(64, 'e'), ""));
@@ -210,7 +211,130 @@ TEST_F(JobStoreTest, AVersion1DatabaseGainsTheStepAndOwners) {
   Database db(Db());
   Statement schema = db.Prepare("SELECT value FROM meta WHERE key = 'schema'");
   ASSERT_TRUE(schema.Step());
-  EXPECT_EQ(schema.Int(0), 3);
+  EXPECT_EQ(schema.Int(0), 4);
+}
+
+// A database of schema version 3 (jobs without submit ids) opens as version 4: its jobs are as
+// they were, no retried submit finds them, and new jobs are found by their submit ids.
+TEST_F(JobStoreTest, AVersion3DatabaseGainsSubmitIds) {
+  const std::string old_job = "job-" + std::string(32, '3');
+  {
+    Database v3(Db());
+    v3.Execute(
+        "CREATE TABLE meta (key TEXT PRIMARY KEY, value INTEGER NOT NULL);"
+        "CREATE TABLE datasets (sha256 TEXT PRIMARY KEY, name TEXT NOT NULL,"
+        "  content BLOB NOT NULL);"
+        "CREATE TABLE jobs (id INTEGER PRIMARY KEY AUTOINCREMENT,"
+        "  kind INTEGER NOT NULL, spec BLOB NOT NULL, state INTEGER NOT NULL,"
+        "  phase TEXT NOT NULL DEFAULT '', done INTEGER NOT NULL DEFAULT 0,"
+        "  total INTEGER NOT NULL DEFAULT 0, evaluations INTEGER NOT NULL DEFAULT 0,"
+        "  error TEXT NOT NULL DEFAULT '', submitted REAL NOT NULL, finished REAL NOT NULL"
+        "  DEFAULT 0, step BLOB NOT NULL DEFAULT x'', public_id TEXT NOT NULL DEFAULT '',"
+        "  owner TEXT NOT NULL DEFAULT '');"
+        "CREATE TABLE dataset_owners (sha256 TEXT NOT NULL, owner TEXT NOT NULL,"
+        "  size INTEGER NOT NULL, uploaded REAL NOT NULL, PRIMARY KEY (sha256, owner));"
+        "CREATE TABLE checkpoints (job INTEGER NOT NULL REFERENCES jobs(id),"
+        "  island INTEGER NOT NULL, epoch INTEGER NOT NULL, state BLOB NOT NULL,"
+        "  PRIMARY KEY (job, island));"
+        "CREATE TABLE results (job INTEGER NOT NULL REFERENCES jobs(id),"
+        "  name TEXT NOT NULL, content BLOB NOT NULL, PRIMARY KEY (job, name));"
+        "CREATE UNIQUE INDEX jobs_by_public_id ON jobs (public_id);"
+        "INSERT INTO meta VALUES ('schema', 3);"
+        "INSERT INTO jobs (kind, spec, state, phase, done, total, submitted, public_id, owner)"
+        "  VALUES (1, x'', 1, '', 0, 0, 100.0, '" +
+        old_job + "', 'alice-key');");
+  }
+  {
+    JobStore store(Db());
+    EXPECT_EQ(store.Status(old_job)->state(), proto::JOB_STATE_QUEUED);
+    EXPECT_EQ(store.Owner(old_job), "alice-key");
+    EXPECT_FALSE(store.FindSubmit("alice-key", ""));
+    const std::string job = store.AddJob(LocalizeSpec(1), "alice-key", 101.0, {"s-1", "hash"});
+    EXPECT_EQ(store.FindSubmit("alice-key", "s-1")->job_id, job);
+    EXPECT_EQ(store.Unfinished(), (std::vector<std::string>{old_job, job}));
+  }
+  JobStore store(Db());  // reopened: nothing to migrate any more
+  EXPECT_EQ(store.Jobs().size(), 2u);
+  Database db(Db());
+  Statement schema = db.Prepare("SELECT value FROM meta WHERE key = 'schema'");
+  ASSERT_TRUE(schema.Step());
+  EXPECT_EQ(schema.Int(0), 4);
+}
+
+// A database a newer build wrote is refused, not misread.
+TEST_F(JobStoreTest, ANewerSchemaIsAClearError) {
+  {
+    Database newer(Db());
+    newer.Execute(
+        "CREATE TABLE meta (key TEXT PRIMARY KEY, value INTEGER NOT NULL);"
+        "INSERT INTO meta VALUES ('schema', 99);");
+  }
+  try {
+    JobStore store(Db());
+    FAIL() << "opened a database of schema 99";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("has schema version 99, this build reads version 4"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// A submit id names one job of its owner, whose spec's hash is kept with it; another owner's
+// same id is another job, and jobs submitted without an id are never found by one.
+TEST_F(JobStoreTest, ASubmitIdNamesOneJobOfItsOwner) {
+  JobStore store(Db());
+  const std::string alice = store.AddJob(LocalizeSpec(1), "alice-key", 1.0, {"s-1", "hash-a"});
+  const std::string bob = store.AddJob(LocalizeSpec(1), "bob-key", 1.0, {"s-1", "hash-b"});
+  EXPECT_NE(alice, bob);
+  const auto found = store.FindSubmit("alice-key", "s-1");
+  ASSERT_TRUE(found);
+  EXPECT_EQ(found->job_id, alice);
+  EXPECT_EQ(found->spec_sha256, "hash-a");
+  EXPECT_EQ(store.FindSubmit("bob-key", "s-1")->job_id, bob);
+  EXPECT_FALSE(store.FindSubmit("carol-key", "s-1"));
+  EXPECT_FALSE(store.FindSubmit("alice-key", "s-2"));
+  // The store itself never makes a second job under one id.
+  EXPECT_THROW(store.AddJob(LocalizeSpec(2), "alice-key", 2.0, {"s-1", "hash-c"}), Error);
+  EXPECT_EQ(store.Jobs("alice-key").size(), 1u);
+  // Without ids, as many jobs as are submitted.
+  store.AddJob(LocalizeSpec(3), "alice-key", 3.0);
+  store.AddJob(LocalizeSpec(3), "alice-key", 3.0);
+  EXPECT_EQ(store.Jobs("alice-key").size(), 3u);
+  EXPECT_FALSE(store.FindSubmit("alice-key", ""));
+}
+
+// A job dropped after the retention takes its submit id with it: the id may name a new job.
+TEST_F(JobStoreTest, CollectingAJobDropsItsSubmitId) {
+  JobStore store(Db());
+  const std::string old = store.AddJob(LocalizeSpec(1), "k", 1.0, {"s-1", "hash"});
+  EXPECT_TRUE(store.Finish(old, proto::JOB_STATE_CANCELLED, "", 2.0));
+  EXPECT_EQ(store.Collect(100.0, 50.0).jobs, 1u);
+  EXPECT_FALSE(store.FindSubmit("k", "s-1"));
+  const std::string again = store.AddJob(LocalizeSpec(1), "k", 100.0, {"s-1", "hash"});
+  EXPECT_NE(again, old);
+  EXPECT_EQ(store.FindSubmit("k", "s-1")->job_id, again);
+}
+
+// What the metrics report: jobs by state, and the bytes kept, a dataset two owners hold once.
+TEST_F(JobStoreTest, CountsJobsByStateAndTheBytesKept) {
+  JobStore store(Db());
+  EXPECT_TRUE(store.CountJobs().empty());
+  EXPECT_EQ(store.TotalStoredBytes(), 0u);
+  const std::string a = store.AddJob(LocalizeSpec(1), "", 1.0);
+  const std::string b = store.AddJob(LocalizeSpec(2), "", 1.0);
+  store.AddJob(LocalizeSpec(3), "", 1.0);
+  store.SetRunning(a, Progress("localize", 1, 2, 3));
+  proto::ResultFile report;
+  report.set_name("report.json");
+  report.set_content("{\"ok\": 1}");
+  EXPECT_TRUE(store.Succeed(b, {report}, 2.0));
+  EXPECT_EQ(store.CountJobs(),
+            (std::map<proto::JobState, std::uint64_t>{{proto::JOB_STATE_QUEUED, 1},
+                                                      {proto::JOB_STATE_RUNNING, 1},
+                                                      {proto::JOB_STATE_SUCCEEDED, 1}}));
+  store.PutDataset(std::string(64, 'c'), "log.clf", "12345", "alice", 1.0);
+  store.PutDataset(std::string(64, 'c'), "log.clf", "12345", "bob", 1.0);
+  EXPECT_EQ(store.TotalStoredBytes(), 5u + 9u);
 }
 
 TEST_F(JobStoreTest, UnknownAndMalformedJobIdsFindNothing) {

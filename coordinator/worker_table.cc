@@ -53,13 +53,14 @@ bool WorkerTable::Seen(const std::string& identity, Clock::time_point now) {
   return true;
 }
 
-std::optional<std::string> WorkerTable::Assign(const std::string& task_id,
+std::optional<std::string> WorkerTable::Assign(const std::string& task_id, Clock::time_point now,
                                                Clock::time_point deadline) {
   if (idle_.empty()) return std::nullopt;
   std::string identity = std::move(idle_.front());
   idle_.pop_front();
   Worker& w = workers_.at(identity);
   w.task = task_id;
+  w.assigned = now;
   w.deadline = deadline;
   return identity;
 }
@@ -67,6 +68,13 @@ std::optional<std::string> WorkerTable::Assign(const std::string& task_id,
 std::optional<std::string> WorkerTable::TaskOf(const std::string& identity) const {
   const auto it = workers_.find(identity);
   return it == workers_.end() ? std::nullopt : it->second.task;
+}
+
+std::optional<WorkerTable::Clock::duration> WorkerTable::HeldFor(const std::string& identity,
+                                                                 Clock::time_point now) const {
+  const auto it = workers_.find(identity);
+  if (it == workers_.end() || !it->second.task) return std::nullopt;
+  return now - it->second.assigned;
 }
 
 void WorkerTable::Done(const std::string& identity) {
@@ -129,6 +137,17 @@ std::vector<std::string> WorkerTable::Lost(Clock::time_point now,
     if (w.last_seen < silent_since || (w.task && now > w.deadline)) lost.push_back(identity);
   }
   return lost;
+}
+
+std::size_t WorkerTable::busy() const {
+  return static_cast<std::size_t>(
+      std::count_if(workers_.begin(), workers_.end(), [](const auto& e) { return e.second.task; }));
+}
+
+std::size_t WorkerTable::quarantined() const {
+  return static_cast<std::size_t>(
+      std::count_if(workers_.begin(), workers_.end(),
+                    [](const auto& e) { return e.second.quarantined_until.has_value(); }));
 }
 
 std::uint32_t WorkerTable::threads() const {

@@ -28,6 +28,7 @@ class WorkerTable {
     std::uint32_t threads = 0;
     Clock::time_point last_seen;
     std::optional<std::string> task;  // the task in hand
+    Clock::time_point assigned;       // when it was given the task in hand
     Clock::time_point deadline;       // when the task in hand is overdue
     std::uint64_t tasks_done = 0;
     std::string instance;  // drawn by the worker process; empty from one that sends none
@@ -57,11 +58,15 @@ class WorkerTable {
   bool Seen(const std::string& identity, Clock::time_point now);
   bool Known(const std::string& identity) const { return workers_.contains(identity); }
 
-  // The idle worker that has waited longest, made busy with `task_id` until `deadline`.
-  std::optional<std::string> Assign(const std::string& task_id, Clock::time_point deadline);
+  // The idle worker that has waited longest, made busy with `task_id` from `now` until
+  // `deadline`.
+  std::optional<std::string> Assign(const std::string& task_id, Clock::time_point now,
+                                    Clock::time_point deadline);
   bool HasIdle() const { return !idle_.empty(); }
   // The task in hand of a worker, if any.
   std::optional<std::string> TaskOf(const std::string& identity) const;
+  // How long a worker has held its task in hand by `now`; nullopt when it holds none.
+  std::optional<Clock::duration> HeldFor(const std::string& identity, Clock::time_point now) const;
   // The worker finished its task: idle again.
   void Done(const std::string& identity);
   // The worker could not run its task through its own fault: idle again; returns its faults in a
@@ -81,6 +86,9 @@ class WorkerTable {
   std::vector<std::string> Identities() const;
   std::vector<proto::WorkerInfo> List(Clock::time_point now, double now_unix_s) const;
   std::size_t size() const { return workers_.size(); }
+  // Of the known workers, those holding a task, and those quarantined.
+  std::size_t busy() const;
+  std::size_t quarantined() const;
   // The threads of all known workers together.
   std::uint32_t threads() const;
 

@@ -11,6 +11,7 @@ packages=(
   libeigen3-dev libzmq3-dev cppzmq-dev libsodium-dev libprotobuf-dev protobuf-compiler
   libspdlog-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
   zlib1g-dev libbz2-dev libpng-dev libsqlite3-dev libpagmo-dev
+  libcpp-httplib-dev  # the HTTP server of evoslam-coordinator --metrics
   python3  # docs/gen-configuration.py, and the test that docs/configuration.md is fresh
   iproute2  # ip, for the network namespaces of deploy/netns-test.sh
 )

@@ -18,18 +18,6 @@ std::string MapYaml(const std::string& image) {
          "free_thresh: 0.196\n";
 }
 
-// The error a call gets; fails the test when it succeeds.
-template <typename Call>
-ProtocolError RefusalOf(Call call, const std::string& what) {
-  try {
-    call();
-  } catch (const ProtocolError& e) {
-    return e;
-  }
-  ADD_FAILURE() << what << ": accepted";
-  return ProtocolError(proto::ERROR_CODE_UNSPECIFIED, "");
-}
-
 // ---- Path traversal ----
 
 TEST_F(ServiceTest, AMapNamingAFileOutsideItsJobIsRefusedAtSubmit) {

@@ -91,6 +91,18 @@ inline bool Finished(const proto::JobStatus& s) {
          s.state() == proto::JOB_STATE_CANCELLED;
 }
 
+// The error a call gets; fails the test when it succeeds.
+template <typename Call>
+ProtocolError RefusalOf(Call call, const std::string& what) {
+  try {
+    call();
+  } catch (const ProtocolError& e) {
+    return e;
+  }
+  ADD_FAILURE() << what << ": accepted";
+  return ProtocolError(proto::ERROR_CODE_UNSPECIFIED, "");
+}
+
 inline std::string Describe(const proto::JobStatus& s) {
   return s.job_id() + " state " + std::to_string(s.state()) + " " + s.phase() + " " +
          std::to_string(s.done()) + "/" + std::to_string(s.total()) +

@@ -1,5 +1,7 @@
 #include "common/service/service_client.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <sstream>
@@ -8,12 +10,16 @@
 #include "common/io/file_bytes.h"
 #include "common/service/job_state.h"
 #include "common/util/error.h"
+#include "common/util/random_id.h"
 #include "common/util/sha256.h"
 
 namespace evoslam {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// "30 s", "0.5 s": a timeout as the user gave it.
+std::string Seconds(double s) { return fmt::format("{:g} s", s); }
 
 std::string Trim(const std::string& s) {
   const auto first = s.find_first_not_of(" \t\r\"'");
@@ -59,13 +65,13 @@ std::uint64_t ServiceClient::Send(proto::ClientRequest request) {
   request.set_request_id(id);
   if (!evoslam::Send(socket_, Encode(std::move(request)))) {
     throw Error("cannot reach the coordinator at " + options_.endpoint + " within " +
-                std::to_string(static_cast<int>(options_.timeout_seconds)) + " s");
+                Seconds(options_.timeout_seconds));
   }
   return id;
 }
 
-std::optional<proto::ClientReply> ServiceClient::Receive(std::uint64_t request_id,
-                                                         double timeout_seconds) {
+std::optional<proto::ClientReply> ServiceClient::Receive(
+    const std::vector<std::uint64_t>& request_ids, double timeout_seconds) {
   const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                         std::chrono::duration<double>(timeout_seconds));
   for (;;) {
@@ -78,7 +84,7 @@ std::optional<proto::ClientReply> ServiceClient::Receive(std::uint64_t request_i
       proto::ClientReply reply = DecodeClientReply(Bytes(frames->front()));
       // Replies to requests given up on, and requests refused before they could be read
       // (id 0), are told apart by their ids.
-      if (reply.request_id() == request_id) return reply;
+      if (std::ranges::find(request_ids, reply.request_id()) != request_ids.end()) return reply;
       if (reply.request_id() == 0 && reply.has_error()) {
         throw ProtocolError(reply.error().code(), "coordinator: " + reply.error().message());
       }
@@ -86,13 +92,21 @@ std::optional<proto::ClientReply> ServiceClient::Receive(std::uint64_t request_i
   }
 }
 
-proto::ClientReply ServiceClient::Call(proto::ClientRequest request) {
-  const std::uint64_t id = Send(std::move(request));
-  auto reply = Receive(id, options_.timeout_seconds);
+proto::ClientReply ServiceClient::Call(proto::ClientRequest request, int attempts) {
+  attempts = std::max(1, attempts);
+  std::vector<std::uint64_t> sent;
+  std::optional<proto::ClientReply> reply;
+  while (!reply && static_cast<int>(sent.size()) < attempts) {
+    // The last send may have the request: an upload's bytes are not copied for nothing.
+    const bool last = static_cast<int>(sent.size()) + 1 == attempts;
+    sent.push_back(last ? Send(std::move(request)) : Send(request));
+    reply = Receive(sent, options_.timeout_seconds);
+  }
   if (!reply) {
     throw Error("no answer from the coordinator at " + options_.endpoint + " within " +
-                std::to_string(static_cast<int>(options_.timeout_seconds)) +
-                " s (is it running? with CURVE on, are its key and this client's key right?)");
+                Seconds(options_.timeout_seconds) +
+                (attempts > 1 ? ", " + std::to_string(attempts) + " times" : "") +
+                " (is it running? with CURVE on, are its key and this client's key right?)");
   }
   if (reply->has_error()) {
     throw ProtocolError(reply->error().code(), "coordinator: " + reply->error().message());
@@ -132,10 +146,19 @@ proto::DatasetRef ServiceClient::Upload(const std::filesystem::path& file) {
   return UploadBytes(file.string(), ReadFileBytes(file));
 }
 
+std::string NewSubmitId() { return RandomHexId(16); }
+
 std::string ServiceClient::Submit(const proto::JobSpec& spec) {
+  return Submit(spec, NewSubmitId());
+}
+
+std::string ServiceClient::Submit(const proto::JobSpec& spec, const std::string& submit_id) {
   proto::ClientRequest r;
   *r.mutable_submit()->mutable_spec() = spec;
-  return Call(std::move(r)).accepted().job_id();
+  r.mutable_submit()->set_submit_id(submit_id);
+  // A submit that timed out may still have made its job; sent again under the same id, it is
+  // answered with that job.
+  return Call(std::move(r), options_.submit_attempts).accepted().job_id();
 }
 
 proto::JobStatus ServiceClient::Status(const std::string& job_id) {
@@ -157,10 +180,10 @@ proto::JobStatus ServiceClient::Watch(
     proto::ClientRequest r;
     r.mutable_watch()->set_job_id(job_id);
     const std::uint64_t id = Send(r);
-    auto reply = Receive(id, options_.timeout_seconds);
+    auto reply = Receive({id}, options_.timeout_seconds);
     if (!reply) {
       throw Error("no answer from the coordinator at " + options_.endpoint + " within " +
-                  std::to_string(static_cast<int>(options_.timeout_seconds)) + " s");
+                  Seconds(options_.timeout_seconds));
     }
     // Events keep coming under the watch's id; a silence means a long step, or a coordinator
     // that restarted and forgot its watchers: the watch is then asked for again.
@@ -170,7 +193,7 @@ proto::JobStatus ServiceClient::Watch(
       }
       if (on_event) on_event(reply->event());
       if (IsFinished(reply->event().status().state())) return reply->event().status();
-      reply = Receive(id, options_.timeout_seconds);
+      reply = Receive({id}, options_.timeout_seconds);
     }
   }
 }

@@ -20,7 +20,14 @@ struct ClientOptions {
   std::string endpoint = "tcp://127.0.0.1:5555";
   std::optional<CurveClientKeys> curve;
   double timeout_seconds = 30.0;  // for one reply
+  // Times a submit is sent in all while none of its sends is answered within the timeout. Every
+  // send carries the submit's one id, so a submit that made its job before its answer was lost
+  // is answered with that job, not another.
+  int submit_attempts = 3;
 };
+
+// A new submit id: 32 random hex digits, drawn from the system's CSPRNG.
+std::string NewSubmitId();
 
 // A client of the coordinator's socket API (a DEALER socket). Every call waits for its reply;
 // an error reply is thrown as ProtocolError with the coordinator's code and message, and no
@@ -33,7 +40,11 @@ class ServiceClient {
   // reference is named by the path as given, so that errors found in the file say which file.
   proto::DatasetRef Upload(const std::filesystem::path& file);
   proto::DatasetRef UploadBytes(const std::string& name, const std::string& content);
+  // Submits under a new submit id and returns the job's id.
   std::string Submit(const proto::JobSpec& spec);
+  // Submits under `submit_id`: again with the same spec, the same job (as long as the coordinator
+  // keeps it); with another spec, refused INVALID.
+  std::string Submit(const proto::JobSpec& spec, const std::string& submit_id);
   proto::JobStatus Status(const std::string& job_id);
   std::vector<proto::JobStatus> Jobs();
   // Follows a job until it ends, calling `on_event` for every progress event; returns its final
@@ -44,13 +55,17 @@ class ServiceClient {
   proto::JobStatus Cancel(const std::string& job_id);
   std::vector<proto::WorkerInfo> Workers();
 
-  // One request and its reply (or the first reply, for a watch).
-  proto::ClientReply Call(proto::ClientRequest request);
+  // One request and its reply (or the first reply, for a watch). Unanswered within the timeout,
+  // the request is sent again, up to `attempts` times in all, and a reply to any of the sends
+  // is its reply: only for a request that means the same however often it arrives.
+  proto::ClientReply Call(proto::ClientRequest request, int attempts = 1);
 
  private:
   std::uint64_t Send(proto::ClientRequest request);
-  // The next reply to `request_id`, waiting at most `timeout_seconds`; nullopt on timeout.
-  std::optional<proto::ClientReply> Receive(std::uint64_t request_id, double timeout_seconds);
+  // The next reply to one of `request_ids`, waiting at most `timeout_seconds`; nullopt on
+  // timeout.
+  std::optional<proto::ClientReply> Receive(const std::vector<std::uint64_t>& request_ids,
+                                            double timeout_seconds);
 
   ClientOptions options_;
   zmq::socket_t socket_;
