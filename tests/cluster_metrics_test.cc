@@ -1,14 +1,15 @@
 // The coordinator's Prometheus metrics, fetched over HTTP as a Prometheus server would, and the
 // addresses it refuses to serve them on.
 
-#include <httplib.h>
-
 #include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "tests/service_fixture.h"
+
+// Last: it includes glibc's <resolv.h>, whose `_res` macro breaks the Eigen headers after it.
+#include <httplib.h>
 
 namespace evoslam::service_test {
 namespace {
