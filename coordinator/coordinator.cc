@@ -31,6 +31,9 @@
 #include "coordinator/job_store.h"
 #include "coordinator/progress_throttle.h"
 #include "coordinator/task_board.h"
+#include "coordinator/upload_assembler.h"
+#include "coordinator/upload_intake.h"
+#include "coordinator/upload_table.h"
 #include "coordinator/worker_table.h"
 #include "coordinator/zap_handler.h"
 
@@ -125,9 +128,16 @@ class Coordinator::Impl {
   // Broker thread.
   void OnClientFrames();
   void OnWorkerFrames();
-  proto::ClientReply Handle(const std::string& identity, const Requester& requester,
-                            const proto::ClientRequest& request);
-  proto::ClientReply Upload(const proto::UploadDataset& upload, const Requester& requester);
+  // The reply to a request; none yet for one handed to the upload intake, which answers it.
+  std::optional<proto::ClientReply> Handle(const std::string& identity, const Requester& requester,
+                                           proto::ClientRequest& request);
+  std::optional<proto::ClientReply> Upload(const std::string& identity,
+                                           const proto::ClientRequest& request,
+                                           const Requester& requester);
+  void Chunk(const std::string& identity, proto::ClientRequest& request,
+             const Requester& requester);
+  void SendUploadAnswers();
+  void DropSilentUploads(Clock::time_point now);
   proto::ClientReply Submit(proto::JobSpec spec, const Requester& requester);
   proto::ClientReply Watch(const std::string& identity, const Requester& requester,
                            const proto::ClientRequest& request);
@@ -166,6 +176,12 @@ class Coordinator::Impl {
   TempDir files_dir_;
   DatasetFiles files_;
 
+  std::size_t upload_chunk_bytes_;  // what a chunk holds at most: a frame's room, at most
+  UploadTable uploads_;             // broker thread only
+  std::mutex answers_mutex_;
+  std::deque<UploadIntake::Answer> answers_;  // from the upload intake, for the broker to send
+  UploadIntake intake_;                       // after what its answers go through
+
   TaskBoard board_;
   WorkerTable table_;                             // broker thread only
   std::atomic<std::uint32_t> worker_threads_{0};  // of the workers now known, for reports
@@ -191,6 +207,21 @@ Coordinator::Impl::Impl(zmq::context_t& context, CoordinatorOptions options)
       store_(options_.db),
       files_dir_("evoslam-coordinator"),
       files_(files_dir_.path()),
+      upload_chunk_bytes_(
+          std::clamp<std::size_t>(options_.max_message_bytes / 2, 1, kUploadChunkBytes)),
+      uploads_(options_.max_uploads),
+      intake_(options_.db, options_.db.string() + "-uploads",
+              {.chunk_bytes = upload_chunk_bytes_,
+               .window = kUploadWindow,
+               .quota_bytes = options_.client_quota_bytes,
+               .quiet = options_.quiet},
+              [this](UploadIntake::Answer answer) {
+                {
+                  std::lock_guard lock(answers_mutex_);
+                  answers_.push_back(std::move(answer));
+                }
+                waker_.Wake();
+              }),
       board_([this] { waker_.Wake(); }, options_.max_task_attempts) {
   // A coordinator killed with -9 left its dataset copies behind; this one clears them.
   if (const std::size_t stale = RemoveStaleTempDirs("evoslam-coordinator")) {
@@ -218,6 +249,10 @@ Coordinator::Impl::Impl(zmq::context_t& context, CoordinatorOptions options)
   Bind(clients_, options_.clients_endpoint, "clients");
   Bind(workers_, options_.workers_endpoint, "workers");
 
+  if (const std::size_t dropped = store_.DropUnheldDatasets()) {
+    spdlog::log(notice_, "dropped {} that a coordinator ended in the middle of storing",
+                Counted(dropped, "dataset"));
+  }
   Collect();
   for (const std::string& id : store_.Unfinished()) runnable_.push_back(id);
   if (!runnable_.empty()) spdlog::log(notice_, "resuming {} unfinished jobs", runnable_.size());
@@ -270,6 +305,8 @@ void Coordinator::Impl::Run(const std::stop_token& stop) {
       for (const std::string& id : table_.Identities()) SendToWorker(id, beat);
       next_heartbeat_ = now + Seconds(options_.heartbeat_seconds);
     }
+    SendUploadAnswers();
+    DropSilentUploads(now);
     Dispatch();
     FlushEvents();
     worker_threads_ = table_.threads();
@@ -287,7 +324,7 @@ void Coordinator::Impl::OnClientFrames() {
     if (!frames) return;
     if (frames->empty()) continue;
     const std::string identity = Text(frames->front());
-    proto::ClientReply reply;
+    std::optional<proto::ClientReply> reply;
     if (frames->size() != 2) {
       spdlog::warn("client {}: refused a message of {} frames", Peer(identity), frames->size());
       reply = ErrorReplyFor(
@@ -295,7 +332,7 @@ void Coordinator::Impl::OnClientFrames() {
           "a request is exactly one frame, got " + std::to_string(frames->size() - 1));
     } else {
       try {
-        const proto::ClientRequest request = DecodeClientRequest(Bytes((*frames)[1]), limits_);
+        proto::ClientRequest request = DecodeClientRequest(Bytes((*frames)[1]), limits_);
         Requester requester;
         if (zap_) {
           requester.key = UserId((*frames)[1]);
@@ -307,19 +344,25 @@ void Coordinator::Impl::OnClientFrames() {
         reply = ErrorReplyFor(0, e.code(), e.what());
       }
     }
-    SendTo(clients_, identity, Encode(reply));
+    if (reply) SendTo(clients_, identity, Encode(std::move(*reply)));
   }
 }
 
-proto::ClientReply Coordinator::Impl::Handle(const std::string& identity,
-                                             const Requester& requester,
-                                             const proto::ClientRequest& request) {
+std::optional<proto::ClientReply> Coordinator::Impl::Handle(const std::string& identity,
+                                                            const Requester& requester,
+                                                            proto::ClientRequest& request) {
   proto::ClientReply reply;
   try {
     switch (request.request_case()) {
-      case proto::ClientRequest::kUpload:
-        reply = Upload(request.upload(), requester);
+      case proto::ClientRequest::kUpload: {
+        auto started = Upload(identity, request, requester);
+        if (!started) return std::nullopt;
+        reply = std::move(*started);
         break;
+      }
+      case proto::ClientRequest::kChunk:
+        Chunk(identity, request, requester);
+        return std::nullopt;
       case proto::ClientRequest::kSubmit:
         reply = Submit(request.submit().spec(), requester);
         break;
@@ -368,66 +411,104 @@ proto::ClientReply Coordinator::Impl::Handle(const std::string& identity,
   return reply;
 }
 
-proto::ClientReply Coordinator::Impl::Upload(const proto::UploadDataset& upload,
-                                             const Requester& requester) {
-  if (upload.content().size() > options_.max_dataset_bytes) {
-    throw ProtocolError(
-        proto::ERROR_CODE_TOO_LARGE,
-        "dataset " + upload.name() + " of " + std::to_string(upload.content().size()) +
-            " bytes is over the limit of " + std::to_string(options_.max_dataset_bytes));
+std::optional<proto::ClientReply> Coordinator::Impl::Upload(const std::string& identity,
+                                                            const proto::ClientRequest& request,
+                                                            const Requester& requester) {
+  const proto::UploadDataset& upload = request.upload();
+  ValidateDatasetRef(Ref(upload.sha256()), "dataset");
+  bool present = false;
+  {
+    // Only the client's own uploads count: whether another client has some bytes stays its
+    // own business, and bytes uploaded once are the uploader's from then on.
+    std::lock_guard lock(store_mutex_);
+    present = store_.ClaimDataset(upload.sha256(), requester.key, UnixNow());
   }
-  const std::string sha = Sha256Hex(upload.content());
-  // The hash alone asks whether the coordinator has the dataset already.
-  if (upload.content().empty() && upload.sha256() != sha) {
-    ValidateDatasetRef(Ref(upload.sha256()), "dataset");
-    bool present = false;
-    {
-      // Only the client's own uploads count: whether another client has some bytes stays its
-      // own business, and bytes uploaded once are the uploader's from then on.
-      std::lock_guard lock(store_mutex_);
-      present = store_.ClaimDataset(upload.sha256(), requester.key, UnixNow());
-    }
-    if (!present) {
-      throw ProtocolError(proto::ERROR_CODE_UNKNOWN_DATASET,
-                          "dataset " + upload.sha256() + " is not here; upload its bytes");
-    }
+  if (present) {
     proto::ClientReply reply;
     reply.mutable_stored()->mutable_dataset()->set_sha256(upload.sha256());
+    reply.mutable_stored()->mutable_dataset()->set_size_bytes(upload.size_bytes());
     reply.mutable_stored()->mutable_dataset()->set_name(upload.name());
     reply.mutable_stored()->set_already_present(true);
     return reply;
   }
-  if (upload.sha256() != sha) {
-    throw Error("dataset " + upload.name() + ": announced SHA-256 " +
-                upload.sha256().substr(0, 64) + " but its bytes hash to " + sha);
+  if (!upload.has_size_bytes()) {
+    throw ProtocolError(proto::ERROR_CODE_UNKNOWN_DATASET,
+                        "dataset " + upload.sha256() + " is not here; upload its bytes");
   }
-  bool added = false;
-  {
-    std::lock_guard lock(store_mutex_);
-    if (options_.client_quota_bytes > 0 && !store_.OwnsDataset(sha, requester.key)) {
-      const std::uint64_t stored = store_.StoredBytes(requester.key);
-      if (stored + upload.content().size() > options_.client_quota_bytes) {
-        throw ProtocolError(
-            proto::ERROR_CODE_QUOTA_EXCEEDED,
-            "dataset " + upload.name() + " of " + std::to_string(upload.content().size()) +
-                " bytes would take this client's stored bytes to " +
-                std::to_string(stored + upload.content().size()) + ", over its quota of " +
-                std::to_string(options_.client_quota_bytes) +
-                "; the coordinator drops datasets no job reads and old results "
-                "after its retention");
-      }
+  if (upload.size_bytes() > options_.max_dataset_bytes) {
+    throw ProtocolError(proto::ERROR_CODE_TOO_LARGE,
+                        "dataset " + upload.name() + " of " + std::to_string(upload.size_bytes()) +
+                            " bytes is over the limit of " +
+                            std::to_string(options_.max_dataset_bytes));
+  }
+  if (options_.client_quota_bytes > 0) {
+    // Its uploads under way count as stored already: several at once cannot pass the quota.
+    std::uint64_t stored = uploads_.Reserved(requester.key);
+    {
+      std::lock_guard lock(store_mutex_);
+      stored += store_.StoredBytes(requester.key);
     }
-    added = store_.PutDataset(sha, upload.name(), upload.content(), requester.key, UnixNow());
+    CheckQuota(upload.name(), upload.size_bytes(), stored, options_.client_quota_bytes);
   }
-  proto::ClientReply reply;
-  proto::DatasetStored& stored = *reply.mutable_stored();
-  stored.mutable_dataset()->set_sha256(sha);
-  stored.mutable_dataset()->set_size_bytes(upload.content().size());
-  stored.mutable_dataset()->set_name(upload.name());
-  stored.set_already_present(!added);
-  if (added)
-    spdlog::log(notice_, "stored dataset {} ({} bytes)", upload.name(), upload.content().size());
-  return reply;
+  std::string id = uploads_.Begin(requester.key, upload.name(), upload.size_bytes(), Clock::now());
+  spdlog::debug("client {}: {} of dataset {} ({} bytes) starts", Peer(identity), id, upload.name(),
+                upload.size_bytes());
+  intake_.Start(identity, request.request_id(), std::move(id), upload.name(), upload.sha256(),
+                upload.size_bytes(), requester.key, UnixNow());
+  return std::nullopt;
+}
+
+void Coordinator::Impl::Chunk(const std::string& identity, proto::ClientRequest& request,
+                              const Requester& requester) {
+  const std::string id = request.chunk().upload_id();
+  try {
+    // Refused here, an oversized chunk never waits in the intake's queue.
+    CheckChunkSize(request.chunk().content().size(), upload_chunk_bytes_, id);
+    uploads_.Accept(id, requester.key, Clock::now());
+  } catch (const ProtocolError& e) {
+    if (e.code() != proto::ERROR_CODE_UNKNOWN_UPLOAD) {
+      // Refused, the upload cannot go on: its next chunk would come out of order.
+      uploads_.End(id);
+      intake_.Drop(id);
+    }
+    throw;
+  }
+  intake_.Append(identity, request.request_id(), std::move(*request.mutable_chunk()));
+}
+
+void Coordinator::Impl::SendUploadAnswers() {
+  std::deque<UploadIntake::Answer> answers;
+  {
+    std::lock_guard lock(answers_mutex_);
+    answers.swap(answers_);
+  }
+  const Clock::time_point now = Clock::now();
+  for (UploadIntake::Answer& answer : answers) {
+    if (answer.ended) {
+      uploads_.End(answer.upload_id);
+    } else {
+      uploads_.Answered(answer.upload_id, now);
+    }
+    if (answer.reply.has_error()) {
+      spdlog::warn("client {}: refused: {}", Peer(answer.identity), answer.reply.error().message());
+    }
+    if (!SendTo(clients_, answer.identity, Encode(std::move(answer.reply))) && !answer.ended) {
+      // Its client's connection is closed: nobody will send the rest.
+      spdlog::log(notice_, "{} of dataset {} is dropped: its client is gone", answer.upload_id,
+                  uploads_.NameOf(answer.upload_id));
+      uploads_.End(answer.upload_id);
+      intake_.Drop(answer.upload_id);
+    }
+  }
+}
+
+void Coordinator::Impl::DropSilentUploads(Clock::time_point now) {
+  for (const std::string& id : uploads_.Silent(now - Seconds(options_.upload_timeout_seconds))) {
+    spdlog::log(notice_, "{} of dataset {} is dropped: its client sent nothing for {:g} s", id,
+                uploads_.NameOf(id), options_.upload_timeout_seconds);
+    uploads_.End(id);
+    intake_.Drop(id);
+  }
 }
 
 proto::ClientReply Coordinator::Impl::Submit(proto::JobSpec spec, const Requester& requester) {
