@@ -131,9 +131,8 @@ class Coordinator::Impl {
   // The reply to a request; none yet for one handed to the upload intake, which answers it.
   std::optional<proto::ClientReply> Handle(const std::string& identity, const Requester& requester,
                                            proto::ClientRequest& request);
-  std::optional<proto::ClientReply> Upload(const std::string& identity,
-                                           const proto::ClientRequest& request,
-                                           const Requester& requester);
+  void Upload(const std::string& identity, const proto::ClientRequest& request,
+              const Requester& requester);
   void Chunk(const std::string& identity, proto::ClientRequest& request,
              const Requester& requester);
   void SendUploadAnswers();
@@ -173,6 +172,10 @@ class Coordinator::Impl {
 
   std::mutex store_mutex_;  // guards store_ and files_
   JobStore store_;
+  // The broker's own connection, for its reads: in WAL mode a read never waits for a writer, and
+  // the broker never waits for a job thread that holds store_mutex_ while it waits for one (the
+  // upload intake storing a large dataset). Broker thread only.
+  JobStore reader_;
   TempDir files_dir_;
   DatasetFiles files_;
 
@@ -205,6 +208,7 @@ Coordinator::Impl::Impl(zmq::context_t& context, CoordinatorOptions options)
       clients_(context, zmq::socket_type::router),
       workers_(context, zmq::socket_type::router),
       store_(options_.db),
+      reader_(options_.db),
       files_dir_("evoslam-coordinator"),
       files_(files_dir_.path()),
       upload_chunk_bytes_(
@@ -354,12 +358,9 @@ std::optional<proto::ClientReply> Coordinator::Impl::Handle(const std::string& i
   proto::ClientReply reply;
   try {
     switch (request.request_case()) {
-      case proto::ClientRequest::kUpload: {
-        auto started = Upload(identity, request, requester);
-        if (!started) return std::nullopt;
-        reply = std::move(*started);
-        break;
-      }
+      case proto::ClientRequest::kUpload:
+        Upload(identity, request, requester);
+        return std::nullopt;
       case proto::ClientRequest::kChunk:
         Chunk(identity, request, requester);
         return std::nullopt;
@@ -372,9 +373,8 @@ std::optional<proto::ClientReply> Coordinator::Impl::Handle(const std::string& i
       case proto::ClientRequest::kJobs: {
         // Set even when empty: a reply with nothing in its oneof is refused as malformed.
         proto::JobList& jobs = *reply.mutable_jobs();
-        std::lock_guard lock(store_mutex_);
         const auto owner = requester.admin ? std::nullopt : std::optional(requester.key);
-        for (auto& s : store_.Jobs(owner)) *jobs.add_jobs() = std::move(s);
+        for (auto& s : reader_.Jobs(owner)) *jobs.add_jobs() = std::move(s);
         break;
       }
       case proto::ClientRequest::kWatch:
@@ -395,10 +395,7 @@ std::optional<proto::ClientReply> Coordinator::Impl::Handle(const std::string& i
         throw ProtocolError(proto::ERROR_CODE_MALFORMED, "empty request");
     }
   } catch (const ProtocolError& e) {
-    // Asking for a dataset by hash before uploading it is routine, not a fault.
-    const bool routine = e.code() == proto::ERROR_CODE_UNKNOWN_DATASET && request.has_upload();
-    spdlog::log(routine ? spdlog::level::debug : spdlog::level::warn, "client {}: refused: {}",
-                Peer(identity), e.what());
+    spdlog::warn("client {}: refused: {}", Peer(identity), e.what());
     reply = ErrorReplyFor(request.request_id(), e.code(), e.what());
   } catch (const Error& e) {
     spdlog::warn("client {}: refused: {}", Peer(identity), e.what());
@@ -411,51 +408,26 @@ std::optional<proto::ClientReply> Coordinator::Impl::Handle(const std::string& i
   return reply;
 }
 
-std::optional<proto::ClientReply> Coordinator::Impl::Upload(const std::string& identity,
-                                                            const proto::ClientRequest& request,
-                                                            const Requester& requester) {
+void Coordinator::Impl::Upload(const std::string& identity, const proto::ClientRequest& request,
+                               const Requester& requester) {
   const proto::UploadDataset& upload = request.upload();
   ValidateDatasetRef(Ref(upload.sha256()), "dataset");
-  bool present = false;
-  {
-    // Only the client's own uploads count: whether another client has some bytes stays its
-    // own business, and bytes uploaded once are the uploader's from then on.
-    std::lock_guard lock(store_mutex_);
-    present = store_.ClaimDataset(upload.sha256(), requester.key, UnixNow());
-  }
-  if (present) {
-    proto::ClientReply reply;
-    reply.mutable_stored()->mutable_dataset()->set_sha256(upload.sha256());
-    reply.mutable_stored()->mutable_dataset()->set_size_bytes(upload.size_bytes());
-    reply.mutable_stored()->mutable_dataset()->set_name(upload.name());
-    reply.mutable_stored()->set_already_present(true);
-    return reply;
-  }
-  if (!upload.has_size_bytes()) {
-    throw ProtocolError(proto::ERROR_CODE_UNKNOWN_DATASET,
-                        "dataset " + upload.sha256() + " is not here; upload its bytes");
-  }
-  if (upload.size_bytes() > options_.max_dataset_bytes) {
+  if (upload.has_size_bytes() && upload.size_bytes() > options_.max_dataset_bytes) {
     throw ProtocolError(proto::ERROR_CODE_TOO_LARGE,
                         "dataset " + upload.name() + " of " + std::to_string(upload.size_bytes()) +
                             " bytes is over the limit of " +
                             std::to_string(options_.max_dataset_bytes));
   }
-  if (options_.client_quota_bytes > 0) {
-    // Its uploads under way count as stored already: several at once cannot pass the quota.
-    std::uint64_t stored = uploads_.Reserved(requester.key);
-    {
-      std::lock_guard lock(store_mutex_);
-      stored += store_.StoredBytes(requester.key);
-    }
-    CheckQuota(upload.name(), upload.size_bytes(), stored, options_.client_quota_bytes);
-  }
+  // The intake asks the database (the bytes may be the client's already, its quota may have no
+  // room): a store under way may hold the database for a while, and the broker must not wait.
+  // The client's uploads under way count against its quota as if stored.
+  const std::uint64_t reserved = uploads_.Reserved(requester.key);
   std::string id = uploads_.Begin(requester.key, upload.name(), upload.size_bytes(), Clock::now());
   spdlog::debug("client {}: {} of dataset {} ({} bytes) starts", Peer(identity), id, upload.name(),
                 upload.size_bytes());
   intake_.Start(identity, request.request_id(), std::move(id), upload.name(), upload.sha256(),
-                upload.size_bytes(), requester.key, UnixNow());
-  return std::nullopt;
+                upload.has_size_bytes() ? std::optional(upload.size_bytes()) : std::nullopt,
+                requester.key, reserved, UnixNow());
 }
 
 void Coordinator::Impl::Chunk(const std::string& identity, proto::ClientRequest& request,
@@ -490,7 +462,10 @@ void Coordinator::Impl::SendUploadAnswers() {
       uploads_.Answered(answer.upload_id, now);
     }
     if (answer.reply.has_error()) {
-      spdlog::warn("client {}: refused: {}", Peer(answer.identity), answer.reply.error().message());
+      // Asking for a dataset by hash before uploading it is routine, not a fault.
+      const bool routine = answer.reply.error().code() == proto::ERROR_CODE_UNKNOWN_DATASET;
+      spdlog::log(routine ? spdlog::level::debug : spdlog::level::warn, "client {}: refused: {}",
+                  Peer(answer.identity), answer.reply.error().message());
     }
     if (!SendTo(clients_, answer.identity, Encode(std::move(answer.reply))) && !answer.ended) {
       // Its client's connection is closed: nobody will send the rest.
@@ -514,25 +489,27 @@ void Coordinator::Impl::DropSilentUploads(Clock::time_point now) {
 proto::ClientReply Coordinator::Impl::Submit(proto::JobSpec spec, const Requester& requester) {
   PrepareJobSpec(spec);
   const auto refs = JobDatasets(spec);
+  // Only the broker adds jobs and drops owners (Collect): what it reads here still holds when
+  // it adds the job.
+  for (const auto& [what, ref] : refs) {
+    ValidateDatasetRef(ref, what);
+    if (!reader_.OwnsDataset(ref.sha256(), requester.key)) {
+      throw ProtocolError(
+          proto::ERROR_CODE_UNKNOWN_DATASET,
+          std::string(what) + " " + ref.name() + " (" + ref.sha256() + ") has not been uploaded");
+    }
+  }
+  CheckJobFileReferences(spec, [&](const proto::DatasetRef& ref) {
+    return reader_.Dataset(ref.sha256()).value_or("");
+  });
+  if (reader_.CountUnfinished() >= options_.max_queued_jobs) {
+    throw ProtocolError(proto::ERROR_CODE_QUEUE_FULL,
+                        "the queue is full (" + std::to_string(options_.max_queued_jobs) +
+                            " jobs queued or running); try again later");
+  }
   std::string id;
   {
     std::lock_guard lock(store_mutex_);
-    for (const auto& [what, ref] : refs) {
-      ValidateDatasetRef(ref, what);
-      if (!store_.OwnsDataset(ref.sha256(), requester.key)) {
-        throw ProtocolError(
-            proto::ERROR_CODE_UNKNOWN_DATASET,
-            std::string(what) + " " + ref.name() + " (" + ref.sha256() + ") has not been uploaded");
-      }
-    }
-    CheckJobFileReferences(spec, [&](const proto::DatasetRef& ref) {
-      return store_.Dataset(ref.sha256()).value_or("");
-    });
-    if (store_.CountUnfinished() >= options_.max_queued_jobs) {
-      throw ProtocolError(proto::ERROR_CODE_QUEUE_FULL,
-                          "the queue is full (" + std::to_string(options_.max_queued_jobs) +
-                              " jobs queued or running); try again later");
-    }
     id = store_.AddJob(spec, requester.key, UnixNow());
   }
   spdlog::log(notice_, "{}: queued", id);
@@ -543,20 +520,16 @@ proto::ClientReply Coordinator::Impl::Submit(proto::JobSpec spec, const Requeste
 }
 
 proto::JobStatus Coordinator::Impl::StatusOf(const std::string& job_id) {
-  std::lock_guard lock(store_mutex_);
-  auto status = store_.Status(job_id);
+  auto status = reader_.Status(job_id);
   if (!status) throw ProtocolError(proto::ERROR_CODE_UNKNOWN_JOB, "no job " + job_id.substr(0, 64));
   return *status;
 }
 
 proto::JobStatus Coordinator::Impl::StatusFor(const std::string& job_id,
                                               const Requester& requester) {
-  {
-    std::lock_guard lock(store_mutex_);
-    const auto owner = store_.Owner(job_id);
-    if (!owner || !requester.Sees(*owner)) {
-      throw ProtocolError(proto::ERROR_CODE_UNKNOWN_JOB, "no job " + job_id.substr(0, 64));
-    }
+  const auto owner = reader_.Owner(job_id);
+  if (!owner || !requester.Sees(*owner)) {
+    throw ProtocolError(proto::ERROR_CODE_UNKNOWN_JOB, "no job " + job_id.substr(0, 64));
   }
   return StatusOf(job_id);
 }
@@ -581,9 +554,8 @@ proto::ClientReply Coordinator::Impl::Result(const std::string& job_id,
   proto::ClientReply reply;
   switch (status.state()) {
     case proto::JOB_STATE_SUCCEEDED: {
-      std::lock_guard lock(store_mutex_);
       reply.mutable_result()->set_job_id(job_id);
-      for (auto& f : store_.Result(job_id)) *reply.mutable_result()->add_files() = std::move(f);
+      for (auto& f : reader_.Result(job_id)) *reply.mutable_result()->add_files() = std::move(f);
       return reply;
     }
     case proto::JOB_STATE_FAILED:
@@ -733,11 +705,7 @@ void Coordinator::Impl::HandleWorker(const std::string& identity,
       proto::CoordinatorMessage reply;
       proto::DatasetContent& content = *reply.mutable_dataset();
       content.mutable_dataset()->set_sha256(message.fetch().sha256().substr(0, 64));
-      std::optional<std::string> bytes;
-      {
-        std::lock_guard lock(store_mutex_);
-        bytes = store_.Dataset(message.fetch().sha256());
-      }
+      std::optional<std::string> bytes = reader_.Dataset(message.fetch().sha256());
       if (bytes) {
         content.mutable_dataset()->set_size_bytes(bytes->size());
         content.set_content(std::move(*bytes));

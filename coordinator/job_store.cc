@@ -50,9 +50,9 @@ std::vector<std::string> SpecDatasets(const proto::JobSpec& spec) {
   return hashes;
 }
 
-// The most a transaction of a dataset's store writes: big enough that a blob's overflow pages,
-// which each opening of the blob walks from its start, are walked a few times only, and small
-// enough that the job threads' commits wait some tens of milliseconds at most.
+// The most a transaction of a dataset's store writes after the first: big enough that the blob's
+// overflow pages, which each opening of the blob walks from its start, are walked a few times
+// only, and small enough that other writers get the database between two transactions.
 constexpr std::uint64_t kBytesPerTransaction = std::uint64_t{32} << 20;
 
 // A connection's PRAGMA synchronous for a scope; FULL again after it.

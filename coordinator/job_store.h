@@ -33,9 +33,9 @@ class JobStore {
   // Hands over a dataset's next bytes, in order: fills the whole span it is given.
   using ReadBytes = std::function<void(std::span<char>)>;
   // PutDataset of `size` bytes read through `read` in pieces of at most `piece_bytes`, so a large
-  // dataset is never in memory whole: the row is made at its full size (zeroblob) and each piece
-  // written in a short transaction of its own, so that no transaction keeps the job threads
-  // waiting for long. The owner is recorded last, in a transaction synchronised to disk: until
+  // dataset is never in memory whole: the row is made at its full size (zeroblob), then filled
+  // in transactions of at most 32 MiB, so that other writers get the database in between. The
+  // owner is recorded last, in a transaction synchronised to disk: until
   // then nobody holds the bytes, so nobody can use them half-written. A store cut short removes
   // its row; a crash part-way leaves one that DropUnheldDatasets removes.
   bool PutDataset(const std::string& sha256, const std::string& name, std::uint64_t size,

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <exception>
 #include <system_error>
 #include <utility>
@@ -31,14 +32,22 @@ UploadIntake::UploadIntake(const std::filesystem::path& db, std::filesystem::pat
       spool_dir_(std::move(spool_dir)),
       options_(options),
       deliver_(std::move(deliver)),
-      storer_([this](StoreWork& work, const std::stop_token& stop) { Store(work, stop); }),
+      storer_([this](DatabaseWork& work, const std::stop_token& stop) {
+        if (auto* start = std::get_if<StartWork>(&work)) return Begin(*start);
+        Store(std::get<StoreWork>(work), stop);
+      }),
       spooler_([this](Work& work, const std::stop_token&) { Spool(work); }) {}
 
+UploadIntake::~UploadIntake() {
+  spooler_.Stop();
+  storer_.Stop();
+}
+
 void UploadIntake::Start(std::string identity, std::uint64_t request_id, std::string upload_id,
-                         std::string name, std::string sha256, std::uint64_t size,
-                         std::string owner, double now_unix_s) {
-  spooler_.Post(StartWork{std::move(identity), request_id, std::move(upload_id), std::move(name),
-                          std::move(sha256), size, std::move(owner), now_unix_s});
+                         std::string name, std::string sha256, std::optional<std::uint64_t> size,
+                         std::string owner, std::uint64_t reserved, double now_unix_s) {
+  storer_.Post(StartWork{std::move(identity), request_id, std::move(upload_id), std::move(name),
+                         std::move(sha256), size, std::move(owner), reserved, now_unix_s});
 }
 
 void UploadIntake::Append(std::string identity, std::uint64_t request_id,
@@ -50,6 +59,37 @@ void UploadIntake::Drop(std::string upload_id) { spooler_.Post(DropWork{std::mov
 
 void UploadIntake::Spool(Work& work) {
   std::visit([&](auto& w) { Do(w); }, work);
+}
+
+void UploadIntake::Begin(StartWork& work) {
+  Answer answer{work.identity, {}, work.upload_id, true};
+  try {
+    // Only the client's own uploads count: whether another client has some bytes stays its own
+    // business, and bytes uploaded once are the uploader's from then on.
+    if (store_.ClaimDataset(work.sha256, work.owner, work.started)) {
+      proto::DatasetStored& stored = *answer.reply.mutable_stored();
+      stored.mutable_dataset()->set_sha256(work.sha256);
+      stored.mutable_dataset()->set_size_bytes(work.size.value_or(0));
+      stored.mutable_dataset()->set_name(work.name);
+      stored.set_already_present(true);
+    } else if (!work.size) {
+      throw ProtocolError(proto::ERROR_CODE_UNKNOWN_DATASET,
+                          "dataset " + work.sha256 + " is not here; upload its bytes");
+    } else {
+      if (options_.quota_bytes > 0) {
+        CheckQuota(work.name, *work.size, store_.StoredBytes(work.owner) + work.reserved,
+                   options_.quota_bytes);
+      }
+      spooler_.Post(std::move(work));  // the spool thread makes its spool and answers
+      return;
+    }
+  } catch (const ProtocolError& e) {
+    answer.reply = ErrorReplyFor(work.request_id, e.code(), e.what());
+  } catch (const std::exception& e) {
+    answer.reply = ErrorReplyFor(work.request_id, proto::ERROR_CODE_INTERNAL, e.what());
+  }
+  answer.reply.set_request_id(work.request_id);
+  deliver_(std::move(answer));
 }
 
 void UploadIntake::Do(StartWork& work) {
@@ -82,7 +122,7 @@ void UploadIntake::Do(ChunkWork& work) {
     UploadAssembler& assembler = it->second.assembler;
     if (assembler.Append(work.chunk.offset(), work.chunk.content())) {
       StoreWork store{work.identity, work.request_id, uploads_.extract(it)};
-      storer_.Post(std::move(store));
+      storer_.Post(DatabaseWork(std::move(store)));
       return;  // answered once stored
     }
     answer.reply.mutable_chunk_stored()->set_upload_id(id);
@@ -106,6 +146,7 @@ void UploadIntake::Store(StoreWork& work, const std::stop_token& stop) {
   Upload& upload = work.upload.mapped();
   UploadAssembler& assembler = upload.assembler;
   Answer answer{work.identity, {}, assembler.upload_id(), true};
+  const auto began = std::chrono::steady_clock::now();
   try {
     if (options_.quota_bytes > 0 && !store_.OwnsDataset(assembler.sha256(), upload.owner)) {
       CheckQuota(assembler.name(), assembler.size(), store_.StoredBytes(upload.owner),
@@ -125,7 +166,8 @@ void UploadIntake::Store(StoreWork& work, const std::stop_token& stop) {
     stored.set_already_present(!added);
     if (added) {
       spdlog::log(options_.quiet ? spdlog::level::debug : spdlog::level::info,
-                  "stored dataset {} ({} bytes)", assembler.name(), assembler.size());
+                  "stored dataset {} ({} bytes) in {:.2f} s", assembler.name(), assembler.size(),
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count());
     }
   } catch (const ProtocolError& e) {
     answer.reply = ErrorReplyFor(work.request_id, e.code(), e.what());

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
 #include <stop_token>
 #include <string>
 #include <variant>
@@ -18,13 +19,15 @@
 
 namespace evoslam {
 
-// Where uploads' bytes go, off the broker thread, so that the broker never waits for a disk or a
-// hash. One thread writes each chunk to its upload's spool file, hashing it as it comes; another
-// stores each finished dataset in the database through a connection of its own, piece by piece
-// (JobStore::PutDataset), one dataset at a time, while the first goes on taking other uploads'
-// chunks. No more of an upload than its chunks on their way is ever in memory. Every request
-// handed over is answered through `deliver`; an upload's answers come in the order of its
-// requests. Uploads not finished, and their spool files, go with the object.
+// Uploads, off the broker thread, so that the broker never waits for the database, a disk or a
+// hash. The store thread, through a database connection of its own, answers each upload's start
+// (the client holds the bytes already, or its quota has no room) and stores each finished
+// dataset piece by piece (JobStore::PutDataset), one at a time; the spool thread writes each
+// chunk to its upload's spool file, hashing it as it comes, and goes on with other uploads'
+// chunks while a dataset is stored. No more of an upload than its chunks on their way is ever
+// in memory. Every request handed over is answered through `deliver`; an upload's answers come
+// in the order of its requests. Uploads not finished, and their spool files, go with the
+// object.
 class UploadIntake {
  public:
   struct Options {
@@ -50,14 +53,18 @@ class UploadIntake {
   // goes; throws Error when it cannot.
   UploadIntake(const std::filesystem::path& db, std::filesystem::path spool_dir, Options options,
                Deliver deliver);
+  ~UploadIntake();
   UploadIntake(const UploadIntake&) = delete;
   UploadIntake& operator=(const UploadIntake&) = delete;
 
-  // A new upload of `owner`'s (its size checked against the limits already), started at
-  // `now_unix_s`; answered `upload_started`.
+  // The start of upload `upload_id` of `owner`'s, at `now_unix_s`: a dataset of `size` bytes
+  // (checked against the size limit already), or a question when `size` is none. Answered
+  // `stored` when `owner` holds the bytes already, UNKNOWN_DATASET for a question otherwise,
+  // QUOTA_EXCEEDED when the owner's stored bytes and `reserved` (those of its other uploads
+  // under way) leave no room, and `upload_started` otherwise.
   void Start(std::string identity, std::uint64_t request_id, std::string upload_id,
-             std::string name, std::string sha256, std::uint64_t size, std::string owner,
-             double now_unix_s);
+             std::string name, std::string sha256, std::optional<std::uint64_t> size,
+             std::string owner, std::uint64_t reserved, double now_unix_s);
   // A chunk; answered `chunk_stored`, or `stored` once the last is in the database.
   void Append(std::string identity, std::uint64_t request_id, proto::UploadChunk chunk);
   // Drops an upload the broker gave up on, with its spool file; not answered.
@@ -68,8 +75,9 @@ class UploadIntake {
     std::string identity;
     std::uint64_t request_id = 0;
     std::string upload_id, name, sha256;
-    std::uint64_t size = 0;
+    std::optional<std::uint64_t> size;
     std::string owner;
+    std::uint64_t reserved = 0;
     double started = 0;
   };
   struct ChunkWork {
@@ -84,7 +92,8 @@ class UploadIntake {
 
   struct Upload {
     Upload(const std::filesystem::path& spool, const StartWork& start, std::size_t chunk_bytes)
-        : assembler(spool, start.upload_id, start.name, start.sha256, start.size, chunk_bytes),
+        : assembler(spool, start.upload_id, start.name, start.sha256, start.size.value_or(0),
+                    chunk_bytes),
           owner(start.owner),
           started(start.started) {}
     UploadAssembler assembler;
@@ -98,6 +107,7 @@ class UploadIntake {
     std::uint64_t request_id = 0;
     Uploads::node_type upload;
   };
+  using DatabaseWork = std::variant<StartWork, StoreWork>;
 
   // The spool folder, emptied when made and removed when it goes.
   class SpoolDir {
@@ -118,6 +128,7 @@ class UploadIntake {
   void Do(ChunkWork& work);
   void Do(DropWork& work);
   // The store thread.
+  void Begin(StartWork& work);
   void Store(StoreWork& work, const std::stop_token& stop);
 
   JobStore store_;  // the store thread's own connection
@@ -125,8 +136,8 @@ class UploadIntake {
   Options options_;
   Deliver deliver_;
   Uploads uploads_;  // the spool thread's
-  // Last, the spool thread first: each stops before what it uses goes.
-  WorkThread<StoreWork> storer_;
+  // Last: they stop, both, before what they use goes, for each posts to the other.
+  WorkThread<DatabaseWork> storer_;
   WorkThread<Work> spooler_;
 };
 

@@ -70,7 +70,7 @@ class UploadIntakeTest : public ::testing::Test {
   // Starts upload `id` of `size` bytes hashing to `sha` for client "c", and waits until it is.
   void Begin(UploadIntake& intake, const std::string& id, const std::string& sha,
              std::size_t size) {
-    intake.Start("c", 1, id, id + ".clf", sha, size, "", 10.0);
+    intake.Start("c", 1, id, id + ".clf", sha, size, "", 0, 10.0);
     EXPECT_TRUE(Next().reply.has_upload_started());
   }
 
@@ -78,7 +78,7 @@ class UploadIntakeTest : public ::testing::Test {
   // last answer.
   UploadIntake::Answer Upload(UploadIntake& intake, const std::string& id,
                               const std::string& content, const std::string& owner) {
-    intake.Start("client", 1, id, id + ".clf", Sha256Hex(content), content.size(), owner, 10.0);
+    intake.Start("client", 1, id, id + ".clf", Sha256Hex(content), content.size(), owner, 0, 10.0);
     EXPECT_TRUE(Next().reply.has_upload_started());
     std::size_t at = 0;
     do {
@@ -107,7 +107,7 @@ class UploadIntakeTest : public ::testing::Test {
 TEST_F(UploadIntakeTest, AnUploadInChunksIsStoredWholeAndItsSpoolGoes) {
   UploadIntake intake(Db(), Spools(), Small(), Collector());
   const std::string content = Content(1000);
-  intake.Start("client", 7, "upload-a", "log.clf", Sha256Hex(content), content.size(), "alice",
+  intake.Start("client", 7, "upload-a", "log.clf", Sha256Hex(content), content.size(), "alice", 0,
                10.0);
   const UploadIntake::Answer started = Next();
   EXPECT_EQ(started.identity, "client");
@@ -154,14 +154,17 @@ TEST_F(UploadIntakeTest, TwoClientsUploadingTheSameBytesAtOnceBothHoldThem) {
   UploadIntake intake(Db(), Spools(), Small(), Collector());
   const std::string content = Content(300);
   const std::string sha = Sha256Hex(content);
-  intake.Start("a", 1, "upload-a", "a.clf", sha, content.size(), "alice", 10.0);
-  intake.Start("b", 1, "upload-b", "b.clf", sha, content.size(), "bob", 10.0);
+  intake.Start("a", 1, "upload-a", "a.clf", sha, content.size(), "alice", 0, 10.0);
+  intake.Start("b", 1, "upload-b", "b.clf", sha, content.size(), "bob", 0, 10.0);
+  // Chunks follow the start's answer, as a client's do.
+  EXPECT_TRUE(Next().reply.has_upload_started());
+  EXPECT_TRUE(Next().reply.has_upload_started());
   for (std::size_t at = 0; at < content.size(); at += 64) {
     intake.Append("a", 2, Chunk("upload-a", at, content.substr(at, 64)));
     intake.Append("b", 2, Chunk("upload-b", at, content.substr(at, 64)));
   }
   int stored = 0, present = 0;
-  for (int i = 0; i < 2 + 2 * 5; ++i) {
+  for (int i = 0; i < 2 * 5; ++i) {
     const UploadIntake::Answer answer = Next();
     EXPECT_FALSE(answer.reply.has_error()) << answer.reply.error().message();
     if (answer.reply.has_stored()) {
@@ -209,15 +212,50 @@ TEST_F(UploadIntakeTest, BytesOfAnotherHashAreRefusedAndNothingIsStored) {
   EXPECT_FALSE(store.HasDataset(Sha256Hex("other")));
 }
 
+// The quota is checked again when the bytes are stored: the client's stored bytes may have grown
+// since its upload started (another upload of its, a job's results).
 TEST_F(UploadIntakeTest, AnUploadOverTheQuotaWhenItEndsIsRefused) {
-  JobStore(Db()).PutDataset(std::string(64, 'a'), "old.clf", Content(200), "alice", 1.0);
+  JobStore(Db()).PutDataset(std::string(64, 'a'), "old.clf", Content(100), "alice", 1.0);
   UploadIntake intake(Db(), Spools(), Small(250), Collector());
-  const UploadIntake::Answer last = Upload(intake, "upload-q", Content(100, 1), "alice");
-  ASSERT_TRUE(last.reply.has_error());
+  const std::string content = Content(100, 1);
+  intake.Start("c", 1, "upload-q", "q.clf", Sha256Hex(content), content.size(), "alice", 0, 10.0);
+  ASSERT_TRUE(Next().reply.has_upload_started());
+  JobStore(Db()).PutDataset(std::string(64, 'b'), "meanwhile.clf", Content(100, 2), "alice", 2.0);
+  intake.Append("c", 2, Chunk("upload-q", 0, content.substr(0, 64)));
+  intake.Append("c", 3, Chunk("upload-q", 64, content.substr(64)));
+  EXPECT_TRUE(Next().reply.has_chunk_stored());
+  const UploadIntake::Answer last = Next();
   EXPECT_EQ(last.reply.error().code(), proto::ERROR_CODE_QUOTA_EXCEEDED);
+  EXPECT_TRUE(last.ended);
   // Another client has room.
-  EXPECT_TRUE(Upload(intake, "upload-r", Content(100, 1), "bob").reply.has_stored());
+  EXPECT_TRUE(Upload(intake, "upload-r", content, "bob").reply.has_stored());
   EXPECT_EQ(SpoolFiles(), 0u);
+}
+
+// The start asks the database, off the broker: bytes the client holds need not travel, a
+// question about bytes it does not hold is UNKNOWN_DATASET, and its uploads under way count
+// against its quota.
+TEST_F(UploadIntakeTest, AStartIsAnsweredFromWhatTheClientHoldsAndItsQuota) {
+  const std::string held = Content(100);
+  JobStore(Db()).PutDataset(Sha256Hex(held), "held.clf", held, "alice", 1.0);
+  UploadIntake intake(Db(), Spools(), Small(250), Collector());
+  intake.Start("c", 1, "upload-1", "held.clf", Sha256Hex(held), held.size(), "alice", 0, 20.0);
+  const UploadIntake::Answer present = Next();
+  ASSERT_TRUE(present.reply.has_stored()) << present.reply.DebugString();
+  EXPECT_TRUE(present.reply.stored().already_present());
+  EXPECT_TRUE(present.ended);
+  // Another client must send the bytes to hold them.
+  intake.Start("c", 2, "upload-2", "held.clf", Sha256Hex(held), std::nullopt, "bob", 0, 20.0);
+  const UploadIntake::Answer unknown = Next();
+  EXPECT_EQ(unknown.reply.error().code(), proto::ERROR_CODE_UNKNOWN_DATASET);
+  EXPECT_TRUE(unknown.ended);
+  intake.Start("c", 3, "upload-3", "new.clf", Sha256Hex("x"), 100, "alice", 0, 20.0);
+  EXPECT_TRUE(Next().reply.has_upload_started());
+  intake.Start("c", 4, "upload-4", "new.clf", Sha256Hex("y"), 100, "alice", 100, 20.0);
+  const UploadIntake::Answer over = Next();
+  EXPECT_EQ(over.reply.error().code(), proto::ERROR_CODE_QUOTA_EXCEEDED);
+  EXPECT_EQ(over.reply.request_id(), 4u);
+  EXPECT_EQ(SpoolFiles(), 1u);
 }
 
 TEST_F(UploadIntakeTest, ADroppedUploadLosesItsSpoolAndItsChunksAreOfNoUpload) {

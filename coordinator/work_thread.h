@@ -24,6 +24,15 @@ class WorkThread {
   WorkThread(const WorkThread&) = delete;
   WorkThread& operator=(const WorkThread&) = delete;
 
+  ~WorkThread() { Stop(); }
+
+  // Ends the thread as the object's going does; work posted after is kept undone. For threads
+  // that post to each other: both stop before either goes.
+  void Stop() {
+    thread_.request_stop();
+    if (thread_.joinable()) thread_.join();
+  }
+
   void Post(Work work) {
     {
       std::lock_guard lock(mutex_);
