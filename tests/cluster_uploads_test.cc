@@ -78,6 +78,23 @@ TEST_F(ServiceTest, ThreeLargeUploadsDuringAJobLoseNoWorkerAndKeepTheCoordinator
   std::vector<std::string> errors;
   std::vector<proto::DatasetRef> refs(3);
   std::vector<double> seconds(3);
+  // Meanwhile a client asks for the job's status: its answers must not wait for the uploads.
+  double slowest_status = 0;
+  std::jthread asker([&](const std::stop_token& stop) {
+    try {
+      auto mine = Client(c.clients, 30);
+      while (!stop.stop_requested()) {
+        const Clock::time_point asked = Clock::now();
+        mine.Status(id);
+        slowest_status =
+            std::max(slowest_status, std::chrono::duration<double>(Clock::now() - asked).count());
+        std::this_thread::sleep_for(100ms);
+      }
+    } catch (const std::exception& e) {
+      std::lock_guard lock(mutex);
+      errors.push_back(std::string("status: ") + e.what());
+    }
+  });
   {
     std::vector<std::jthread> uploaders;
     for (std::size_t i = 0; i < 3; ++i) {
@@ -94,11 +111,14 @@ TEST_F(ServiceTest, ThreeLargeUploadsDuringAJobLoseNoWorkerAndKeepTheCoordinator
       });
     }
   }
+  asker.request_stop();
+  asker.join();
   const proto::JobStatus after_uploads = client.Status(id);
   const long peak_kib = PeakRssKib(c.process->pid());
   std::cout << "three uploads of " << kUploadBytes << " bytes took " << seconds[0] << ", "
-            << seconds[1] << " and " << seconds[2] << " s; the coordinator's peak RSS is "
-            << peak_kib / 1024 << " MiB; the job then: " << Describe(after_uploads) << "\n";
+            << seconds[1] << " and " << seconds[2] << " s; the slowest status answer meanwhile "
+            << slowest_status << " s; the coordinator's peak RSS is " << peak_kib / 1024
+            << " MiB; the job then: " << Describe(after_uploads) << "\n";
   ASSERT_TRUE(errors.empty()) << errors.front();
   for (std::size_t i = 0; i < 3; ++i) {
     EXPECT_EQ(refs[i].sha256(), hashes[i]);
@@ -116,6 +136,7 @@ TEST_F(ServiceTest, ThreeLargeUploadsDuringAJobLoseNoWorkerAndKeepTheCoordinator
   }
   EXPECT_EQ(FilesIn(Path("jobs.db") + "-uploads"), 0u) << "spool files left behind";
 #ifndef EVOSLAM_SANITIZED
+  EXPECT_LT(slowest_status, 1.0) << "a status request waited for the uploads";
   EXPECT_GT(peak_kib, 0);
   EXPECT_LT(peak_kib, 400 * 1024) << "the coordinator's peak RSS";
 #endif
