@@ -24,7 +24,6 @@
 #include "common/service/job_state.h"
 #include "common/util/counted.h"
 #include "common/util/error.h"
-#include "common/util/sha256.h"
 #include "common/util/temp_dir.h"
 #include "coordinator/job_context.h"
 #include "coordinator/job_kinds.h"
