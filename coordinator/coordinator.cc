@@ -24,7 +24,6 @@
 #include "common/service/job_state.h"
 #include "common/util/counted.h"
 #include "common/util/error.h"
-#include "common/util/sha256.h"
 #include "common/util/temp_dir.h"
 #include "coordinator/job_context.h"
 #include "coordinator/job_kinds.h"
@@ -33,6 +32,9 @@
 #include "coordinator/metrics_server.h"
 #include "coordinator/progress_throttle.h"
 #include "coordinator/task_board.h"
+#include "coordinator/upload_assembler.h"
+#include "coordinator/upload_intake.h"
+#include "coordinator/upload_table.h"
 #include "coordinator/worker_table.h"
 #include "coordinator/zap_handler.h"
 
@@ -140,9 +142,15 @@ class Coordinator::Impl {
   // Broker thread.
   void OnClientFrames();
   void OnWorkerFrames();
-  proto::ClientReply Handle(const std::string& identity, const Requester& requester,
-                            const proto::ClientRequest& request);
-  proto::ClientReply Upload(const proto::UploadDataset& upload, const Requester& requester);
+  // The reply to a request; none yet for one handed to the upload intake, which answers it.
+  std::optional<proto::ClientReply> Handle(const std::string& identity, const Requester& requester,
+                                           proto::ClientRequest& request);
+  void Upload(const std::string& identity, const proto::ClientRequest& request,
+              const Requester& requester);
+  void Chunk(const std::string& identity, proto::ClientRequest& request,
+             const Requester& requester);
+  void SendUploadAnswers();
+  void DropSilentUploads(Clock::time_point now);
   proto::ClientReply Submit(const proto::SubmitJob& submit, const Requester& requester);
   proto::ClientReply Watch(const std::string& identity, const Requester& requester,
                            const proto::ClientRequest& request);
@@ -180,8 +188,18 @@ class Coordinator::Impl {
 
   std::mutex store_mutex_;  // guards store_ and files_
   JobStore store_;
+  // The broker's own connection, for its reads: in WAL mode a read never waits for a writer, and
+  // the broker never waits for a job thread that holds store_mutex_ while it waits for one (the
+  // upload intake storing a large dataset). Broker thread only.
+  JobStore reader_;
   TempDir files_dir_;
   DatasetFiles files_;
+
+  std::size_t upload_chunk_bytes_;  // what a chunk holds at most: a frame's room, at most
+  UploadTable uploads_;             // broker thread only
+  std::mutex answers_mutex_;
+  std::deque<UploadIntake::Answer> answers_;  // from the upload intake, for the broker to send
+  UploadIntake intake_;                       // after what its answers go through
 
   TaskBoard board_;
   WorkerTable table_;                             // broker thread only
@@ -210,8 +228,24 @@ Coordinator::Impl::Impl(zmq::context_t& context, CoordinatorOptions options)
       clients_(context, zmq::socket_type::router),
       workers_(context, zmq::socket_type::router),
       store_(options_.db),
+      reader_(options_.db),
       files_dir_("evoslam-coordinator"),
       files_(files_dir_.path()),
+      upload_chunk_bytes_(
+          std::clamp<std::size_t>(options_.max_message_bytes / 2, 1, kUploadChunkBytes)),
+      uploads_(options_.max_uploads),
+      intake_(options_.db, options_.db.string() + "-uploads",
+              {.chunk_bytes = upload_chunk_bytes_,
+               .window = kUploadWindow,
+               .quota_bytes = options_.client_quota_bytes,
+               .quiet = options_.quiet},
+              [this](UploadIntake::Answer answer) {
+                {
+                  std::lock_guard lock(answers_mutex_);
+                  answers_.push_back(std::move(answer));
+                }
+                waker_.Wake();
+              }),
       board_([this] { waker_.Wake(); }, options_.max_task_attempts) {
   // A coordinator killed with -9 left its dataset copies behind; this one clears them.
   if (const std::size_t stale = RemoveStaleTempDirs("evoslam-coordinator")) {
@@ -242,6 +276,10 @@ Coordinator::Impl::Impl(zmq::context_t& context, CoordinatorOptions options)
     metrics_server_.emplace(*options_.metrics_address, [this] { return metrics_.Render(); });
   }
 
+  if (const std::size_t dropped = store_.DropUnheldDatasets()) {
+    spdlog::log(notice_, "dropped {} that a coordinator ended in the middle of storing",
+                Counted(dropped, "dataset"));
+  }
   Collect();
   for (const std::string& id : store_.Unfinished()) runnable_.push_back(id);
   if (!runnable_.empty()) spdlog::log(notice_, "resuming {} unfinished jobs", runnable_.size());
@@ -295,6 +333,8 @@ void Coordinator::Impl::Run(const std::stop_token& stop) {
       for (const std::string& id : table_.Identities()) SendToWorker(id, beat);
       next_heartbeat_ = now + Seconds(options_.heartbeat_seconds);
     }
+    SendUploadAnswers();
+    DropSilentUploads(now);
     Dispatch();
     FlushEvents();
     worker_threads_ = table_.threads();
@@ -313,7 +353,7 @@ void Coordinator::Impl::OnClientFrames() {
     if (!frames) return;
     if (frames->empty()) continue;
     const std::string identity = Text(frames->front());
-    proto::ClientReply reply;
+    std::optional<proto::ClientReply> reply;
     if (frames->size() != 2) {
       spdlog::warn("client {}: refused a message of {} frames", Peer(identity), frames->size());
       reply = ErrorReplyFor(
@@ -321,7 +361,7 @@ void Coordinator::Impl::OnClientFrames() {
           "a request is exactly one frame, got " + std::to_string(frames->size() - 1));
     } else {
       try {
-        const proto::ClientRequest request = DecodeClientRequest(Bytes((*frames)[1]), limits_);
+        proto::ClientRequest request = DecodeClientRequest(Bytes((*frames)[1]), limits_);
         Requester requester;
         if (zap_) {
           requester.key = UserId((*frames)[1]);
@@ -333,21 +373,22 @@ void Coordinator::Impl::OnClientFrames() {
         reply = ErrorReplyFor(0, e.code(), e.what());
       }
     }
-    SendTo(clients_, identity, Encode(reply));
+    if (reply) SendTo(clients_, identity, Encode(std::move(*reply)));
   }
 }
 
-proto::ClientReply Coordinator::Impl::Handle(const std::string& identity,
-                                             const Requester& requester,
-                                             const proto::ClientRequest& request) {
+std::optional<proto::ClientReply> Coordinator::Impl::Handle(const std::string& identity,
+                                                            const Requester& requester,
+                                                            proto::ClientRequest& request) {
   proto::ClientReply reply;
   try {
     switch (request.request_case()) {
-      case proto::ClientRequest::kUpload: {
-        const Metrics::UploadInProgress uploading(metrics_);
-        reply = Upload(request.upload(), requester);
-        break;
-      }
+      case proto::ClientRequest::kUpload:
+        Upload(identity, request, requester);
+        return std::nullopt;
+      case proto::ClientRequest::kChunk:
+        Chunk(identity, request, requester);
+        return std::nullopt;
       case proto::ClientRequest::kSubmit:
         reply = Submit(request.submit(), requester);
         break;
@@ -357,9 +398,8 @@ proto::ClientReply Coordinator::Impl::Handle(const std::string& identity,
       case proto::ClientRequest::kJobs: {
         // Set even when empty: a reply with nothing in its oneof is refused as malformed.
         proto::JobList& jobs = *reply.mutable_jobs();
-        std::lock_guard lock(store_mutex_);
         const auto owner = requester.admin ? std::nullopt : std::optional(requester.key);
-        for (auto& s : store_.Jobs(owner)) *jobs.add_jobs() = std::move(s);
+        for (auto& s : reader_.Jobs(owner)) *jobs.add_jobs() = std::move(s);
         break;
       }
       case proto::ClientRequest::kWatch:
@@ -380,10 +420,7 @@ proto::ClientReply Coordinator::Impl::Handle(const std::string& identity,
         throw ProtocolError(proto::ERROR_CODE_MALFORMED, "empty request");
     }
   } catch (const ProtocolError& e) {
-    // Asking for a dataset by hash before uploading it is routine, not a fault.
-    const bool routine = e.code() == proto::ERROR_CODE_UNKNOWN_DATASET && request.has_upload();
-    spdlog::log(routine ? spdlog::level::debug : spdlog::level::warn, "client {}: refused: {}",
-                Peer(identity), e.what());
+    spdlog::warn("client {}: refused: {}", Peer(identity), e.what());
     reply = ErrorReplyFor(request.request_id(), e.code(), e.what());
   } catch (const Error& e) {
     spdlog::warn("client {}: refused: {}", Peer(identity), e.what());
@@ -396,66 +433,82 @@ proto::ClientReply Coordinator::Impl::Handle(const std::string& identity,
   return reply;
 }
 
-proto::ClientReply Coordinator::Impl::Upload(const proto::UploadDataset& upload,
-                                             const Requester& requester) {
-  if (upload.content().size() > options_.max_dataset_bytes) {
-    throw ProtocolError(
-        proto::ERROR_CODE_TOO_LARGE,
-        "dataset " + upload.name() + " of " + std::to_string(upload.content().size()) +
-            " bytes is over the limit of " + std::to_string(options_.max_dataset_bytes));
+void Coordinator::Impl::Upload(const std::string& identity, const proto::ClientRequest& request,
+                               const Requester& requester) {
+  const proto::UploadDataset& upload = request.upload();
+  ValidateDatasetRef(Ref(upload.sha256()), "dataset");
+  if (upload.has_size_bytes() && upload.size_bytes() > options_.max_dataset_bytes) {
+    throw ProtocolError(proto::ERROR_CODE_TOO_LARGE,
+                        "dataset " + upload.name() + " of " + std::to_string(upload.size_bytes()) +
+                            " bytes is over the limit of " +
+                            std::to_string(options_.max_dataset_bytes));
   }
-  const std::string sha = Sha256Hex(upload.content());
-  // The hash alone asks whether the coordinator has the dataset already.
-  if (upload.content().empty() && upload.sha256() != sha) {
-    ValidateDatasetRef(Ref(upload.sha256()), "dataset");
-    bool present = false;
-    {
-      // Only the client's own uploads count: whether another client has some bytes stays its
-      // own business, and bytes uploaded once are the uploader's from then on.
-      std::lock_guard lock(store_mutex_);
-      present = store_.ClaimDataset(upload.sha256(), requester.key, UnixNow());
+  // The intake asks the database (the bytes may be the client's already, its quota may have no
+  // room): a store under way may hold the database for a while, and the broker must not wait.
+  // The client's uploads under way count against its quota as if stored.
+  const std::uint64_t reserved = uploads_.Reserved(requester.key);
+  std::string id = uploads_.Begin(requester.key, upload.name(), upload.size_bytes(), Clock::now());
+  spdlog::debug("client {}: {} of dataset {} ({} bytes) starts", Peer(identity), id, upload.name(),
+                upload.size_bytes());
+  intake_.Start(identity, request.request_id(), std::move(id), upload.name(), upload.sha256(),
+                upload.has_size_bytes() ? std::optional(upload.size_bytes()) : std::nullopt,
+                requester.key, reserved, UnixNow());
+}
+
+void Coordinator::Impl::Chunk(const std::string& identity, proto::ClientRequest& request,
+                              const Requester& requester) {
+  const std::string id = request.chunk().upload_id();
+  try {
+    // Refused here, an oversized chunk never waits in the intake's queue.
+    CheckChunkSize(request.chunk().content().size(), upload_chunk_bytes_, id);
+    uploads_.Accept(id, requester.key, Clock::now());
+  } catch (const ProtocolError& e) {
+    if (e.code() != proto::ERROR_CODE_UNKNOWN_UPLOAD) {
+      // Refused, the upload cannot go on: its next chunk would come out of order.
+      uploads_.End(id);
+      intake_.Drop(id);
     }
-    if (!present) {
-      throw ProtocolError(proto::ERROR_CODE_UNKNOWN_DATASET,
-                          "dataset " + upload.sha256() + " is not here; upload its bytes");
-    }
-    proto::ClientReply reply;
-    reply.mutable_stored()->mutable_dataset()->set_sha256(upload.sha256());
-    reply.mutable_stored()->mutable_dataset()->set_name(upload.name());
-    reply.mutable_stored()->set_already_present(true);
-    return reply;
+    throw;
   }
-  if (upload.sha256() != sha) {
-    throw Error("dataset " + upload.name() + ": announced SHA-256 " +
-                upload.sha256().substr(0, 64) + " but its bytes hash to " + sha);
-  }
-  bool added = false;
+  intake_.Append(identity, request.request_id(), std::move(*request.mutable_chunk()));
+}
+
+void Coordinator::Impl::SendUploadAnswers() {
+  std::deque<UploadIntake::Answer> answers;
   {
-    std::lock_guard lock(store_mutex_);
-    if (options_.client_quota_bytes > 0 && !store_.OwnsDataset(sha, requester.key)) {
-      const std::uint64_t stored = store_.StoredBytes(requester.key);
-      if (stored + upload.content().size() > options_.client_quota_bytes) {
-        throw ProtocolError(
-            proto::ERROR_CODE_QUOTA_EXCEEDED,
-            "dataset " + upload.name() + " of " + std::to_string(upload.content().size()) +
-                " bytes would take this client's stored bytes to " +
-                std::to_string(stored + upload.content().size()) + ", over its quota of " +
-                std::to_string(options_.client_quota_bytes) +
-                "; the coordinator drops datasets no job reads and old results "
-                "after its retention");
-      }
-    }
-    added = store_.PutDataset(sha, upload.name(), upload.content(), requester.key, UnixNow());
+    std::lock_guard lock(answers_mutex_);
+    answers.swap(answers_);
   }
-  proto::ClientReply reply;
-  proto::DatasetStored& stored = *reply.mutable_stored();
-  stored.mutable_dataset()->set_sha256(sha);
-  stored.mutable_dataset()->set_size_bytes(upload.content().size());
-  stored.mutable_dataset()->set_name(upload.name());
-  stored.set_already_present(!added);
-  if (added)
-    spdlog::log(notice_, "stored dataset {} ({} bytes)", upload.name(), upload.content().size());
-  return reply;
+  const Clock::time_point now = Clock::now();
+  for (UploadIntake::Answer& answer : answers) {
+    if (answer.ended) {
+      uploads_.End(answer.upload_id);
+    } else {
+      uploads_.Answered(answer.upload_id, now);
+    }
+    if (answer.reply.has_error()) {
+      // Asking for a dataset by hash before uploading it is routine, not a fault.
+      const bool routine = answer.reply.error().code() == proto::ERROR_CODE_UNKNOWN_DATASET;
+      spdlog::log(routine ? spdlog::level::debug : spdlog::level::warn, "client {}: refused: {}",
+                  Peer(answer.identity), answer.reply.error().message());
+    }
+    if (!SendTo(clients_, answer.identity, Encode(std::move(answer.reply))) && !answer.ended) {
+      // Its client's connection is closed: nobody will send the rest.
+      spdlog::log(notice_, "{} of dataset {} is dropped: its client is gone", answer.upload_id,
+                  uploads_.NameOf(answer.upload_id));
+      uploads_.End(answer.upload_id);
+      intake_.Drop(answer.upload_id);
+    }
+  }
+}
+
+void Coordinator::Impl::DropSilentUploads(Clock::time_point now) {
+  for (const std::string& id : uploads_.Silent(now - Seconds(options_.upload_timeout_seconds))) {
+    spdlog::log(notice_, "{} of dataset {} is dropped: its client sent nothing for {:g} s", id,
+                uploads_.NameOf(id), options_.upload_timeout_seconds);
+    uploads_.End(id);
+    intake_.Drop(id);
+  }
 }
 
 proto::ClientReply Coordinator::Impl::Submit(const proto::SubmitJob& submit,
@@ -463,11 +516,7 @@ proto::ClientReply Coordinator::Impl::Submit(const proto::SubmitJob& submit,
   CheckSubmitId(submit.submit_id());
   // The spec as the client sent it, which its retries send again byte for byte.
   const JobStore::Submit key{submit.submit_id(), Sha256Hex(submit.spec().SerializeAsString())};
-  std::optional<JobStore::Submitted> earlier;
-  {
-    std::lock_guard lock(store_mutex_);
-    earlier = store_.FindSubmit(requester.key, key.id);
-  }
+  const std::optional<JobStore::Submitted> earlier = reader_.FindSubmit(requester.key, key.id);
   // A retry of a submit whose answer was lost: its job exists, and counts against no limit again.
   // (The broker thread alone adds jobs, so none can appear under this id meanwhile.)
   if (earlier) {
@@ -486,25 +535,27 @@ proto::ClientReply Coordinator::Impl::Submit(const proto::SubmitJob& submit,
   proto::JobSpec spec = submit.spec();
   PrepareJobSpec(spec);
   const auto refs = JobDatasets(spec);
+  // Only the broker adds jobs and drops owners (Collect): what it reads here still holds when
+  // it adds the job.
+  for (const auto& [what, ref] : refs) {
+    ValidateDatasetRef(ref, what);
+    if (!reader_.OwnsDataset(ref.sha256(), requester.key)) {
+      throw ProtocolError(
+          proto::ERROR_CODE_UNKNOWN_DATASET,
+          std::string(what) + " " + ref.name() + " (" + ref.sha256() + ") has not been uploaded");
+    }
+  }
+  CheckJobFileReferences(spec, [&](const proto::DatasetRef& ref) {
+    return reader_.Dataset(ref.sha256()).value_or("");
+  });
+  if (reader_.CountUnfinished() >= options_.max_queued_jobs) {
+    throw ProtocolError(proto::ERROR_CODE_QUEUE_FULL,
+                        "the queue is full (" + std::to_string(options_.max_queued_jobs) +
+                            " jobs queued or running); try again later");
+  }
   std::string id;
   {
     std::lock_guard lock(store_mutex_);
-    for (const auto& [what, ref] : refs) {
-      ValidateDatasetRef(ref, what);
-      if (!store_.OwnsDataset(ref.sha256(), requester.key)) {
-        throw ProtocolError(
-            proto::ERROR_CODE_UNKNOWN_DATASET,
-            std::string(what) + " " + ref.name() + " (" + ref.sha256() + ") has not been uploaded");
-      }
-    }
-    CheckJobFileReferences(spec, [&](const proto::DatasetRef& ref) {
-      return store_.Dataset(ref.sha256()).value_or("");
-    });
-    if (store_.CountUnfinished() >= options_.max_queued_jobs) {
-      throw ProtocolError(proto::ERROR_CODE_QUEUE_FULL,
-                          "the queue is full (" + std::to_string(options_.max_queued_jobs) +
-                              " jobs queued or running); try again later");
-    }
     id = store_.AddJob(spec, requester.key, UnixNow(), key);
   }
   spdlog::log(notice_, "{}: queued", id);
@@ -516,20 +567,16 @@ proto::ClientReply Coordinator::Impl::Submit(const proto::SubmitJob& submit,
 }
 
 proto::JobStatus Coordinator::Impl::StatusOf(const std::string& job_id) {
-  std::lock_guard lock(store_mutex_);
-  auto status = store_.Status(job_id);
+  auto status = reader_.Status(job_id);
   if (!status) throw ProtocolError(proto::ERROR_CODE_UNKNOWN_JOB, "no job " + job_id.substr(0, 64));
   return *status;
 }
 
 proto::JobStatus Coordinator::Impl::StatusFor(const std::string& job_id,
                                               const Requester& requester) {
-  {
-    std::lock_guard lock(store_mutex_);
-    const auto owner = store_.Owner(job_id);
-    if (!owner || !requester.Sees(*owner)) {
-      throw ProtocolError(proto::ERROR_CODE_UNKNOWN_JOB, "no job " + job_id.substr(0, 64));
-    }
+  const auto owner = reader_.Owner(job_id);
+  if (!owner || !requester.Sees(*owner)) {
+    throw ProtocolError(proto::ERROR_CODE_UNKNOWN_JOB, "no job " + job_id.substr(0, 64));
   }
   return StatusOf(job_id);
 }
@@ -554,9 +601,8 @@ proto::ClientReply Coordinator::Impl::Result(const std::string& job_id,
   proto::ClientReply reply;
   switch (status.state()) {
     case proto::JOB_STATE_SUCCEEDED: {
-      std::lock_guard lock(store_mutex_);
       reply.mutable_result()->set_job_id(job_id);
-      for (auto& f : store_.Result(job_id)) *reply.mutable_result()->add_files() = std::move(f);
+      for (auto& f : reader_.Result(job_id)) *reply.mutable_result()->add_files() = std::move(f);
       return reply;
     }
     case proto::JOB_STATE_FAILED:
@@ -614,15 +660,9 @@ void Coordinator::Impl::RefreshMetrics(Clock::time_point now) {
   const std::size_t quarantined = table_.quarantined();
   metrics_.SetWorkers(table_.size() - quarantined, quarantined);
   metrics_.SetTasks(table_.busy(), board_.waiting());
-  std::map<proto::JobState, std::uint64_t> jobs;
-  std::uint64_t stored = 0;
-  {
-    std::lock_guard lock(store_mutex_);
-    jobs = store_.CountJobs();
-    stored = store_.TotalStoredBytes();
-  }
-  metrics_.SetJobs(jobs);
-  metrics_.SetStoredBytes(stored);
+  metrics_.SetUploadsInProgress(uploads_.size());
+  metrics_.SetJobs(reader_.CountJobs());
+  metrics_.SetStoredBytes(reader_.TotalStoredBytes());
 }
 
 void Coordinator::Impl::Collect() {
@@ -724,11 +764,7 @@ void Coordinator::Impl::HandleWorker(const std::string& identity,
       proto::CoordinatorMessage reply;
       proto::DatasetContent& content = *reply.mutable_dataset();
       content.mutable_dataset()->set_sha256(message.fetch().sha256().substr(0, 64));
-      std::optional<std::string> bytes;
-      {
-        std::lock_guard lock(store_mutex_);
-        bytes = store_.Dataset(message.fetch().sha256());
-      }
+      std::optional<std::string> bytes = reader_.Dataset(message.fetch().sha256());
       if (bytes) {
         content.mutable_dataset()->set_size_bytes(bytes->size());
         content.set_content(std::move(*bytes));

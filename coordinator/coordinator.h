@@ -33,6 +33,9 @@ struct CoordinatorOptions {
   std::size_t max_queued_jobs = 10000;  // jobs queued or running
   std::size_t max_running_jobs = 8;     // jobs whose threads run at once
   std::size_t max_watchers = 1000;
+  std::size_t max_uploads = 64;  // uploads under way at once
+  // An upload whose client sends nothing for this long is dropped: its client is gone.
+  double upload_timeout_seconds = 60;
   // Bytes a client may keep stored (its datasets and its jobs' results); 0: no limit.
   std::uint64_t client_quota_bytes = 0;
   // Ended jobs (with their results) are dropped this long after they ended, and datasets no job

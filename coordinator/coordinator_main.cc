@@ -53,6 +53,13 @@ int main(int argc, char** argv) {
   app.add_option("--max-dataset-mb", max_dataset_mb, "largest dataset accepted, MiB")
       ->capture_default_str()
       ->check(CLI::Range(0.001, 2000.0));
+  app.add_option("--max-uploads", options.max_uploads, "uploads under way at once at most")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100'000));
+  app.add_option("--upload-timeout", options.upload_timeout_seconds,
+                 "seconds an upload may go without a chunk before it is dropped")
+      ->capture_default_str()
+      ->check(CLI::Range(0.1, 1e6));
   app.add_option("--max-queued-jobs", options.max_queued_jobs, "jobs queued or running at most")
       ->capture_default_str()
       ->check(CLI::Range(1, 10'000'000));

@@ -1,5 +1,6 @@
 #include "coordinator/job_store.h"
 
+#include <algorithm>
 #include <set>
 #include <utility>
 
@@ -52,6 +53,31 @@ std::vector<std::string> SpecDatasets(const proto::JobSpec& spec) {
   }
   return hashes;
 }
+
+// The most a transaction of a dataset's store writes after the first: big enough that the blob's
+// overflow pages, which each opening of the blob walks from its start, are walked a few times
+// only, and small enough that other writers get the database between two transactions.
+constexpr std::uint64_t kBytesPerTransaction = std::uint64_t{32} << 20;
+
+// A connection's PRAGMA synchronous for a scope; FULL again after it.
+class Synchronous {
+ public:
+  Synchronous(Database& db, const char* level) : db_(db) {
+    db_.Execute(std::string("PRAGMA synchronous = ") + level);
+  }
+  ~Synchronous() {
+    try {
+      db_.Execute("PRAGMA synchronous = FULL");
+    } catch (const std::exception&) {
+      // Setting a pragma touches no file; nothing to do if even that fails.
+    }
+  }
+  Synchronous(const Synchronous&) = delete;
+  Synchronous& operator=(const Synchronous&) = delete;
+
+ private:
+  Database& db_;
+};
 
 }  // namespace
 
@@ -128,24 +154,128 @@ std::int64_t JobStore::JobNumber(const std::string& job_id) {
 
 bool JobStore::PutDataset(const std::string& sha256, const std::string& name,
                           const std::string& content, const std::string& owner, double now_unix_s) {
-  bool added = false;
-  db_.Transaction([&] {
-    added = !HasDataset(sha256);
-    if (added) {
-      Statement insert =
-          db_.Prepare("INSERT INTO datasets (sha256, name, content) VALUES (?1, ?2, ?3)");
-      insert.Bind(1, sha256).Bind(2, name).BindBlob(3, content).Run();
-    }
-    Statement own = db_.Prepare(
-        "INSERT INTO dataset_owners (sha256, owner, size, uploaded) VALUES (?1, ?2, ?3, ?4)"
-        " ON CONFLICT (sha256, owner) DO UPDATE SET uploaded = excluded.uploaded");
-    own.Bind(1, sha256)
+  std::size_t at = 0;
+  const ReadBytes read = [&](std::span<char> piece) {
+    std::copy_n(content.data() + at, piece.size(), piece.data());
+    at += piece.size();
+  };
+  return PutDataset(sha256, name, content.size(), read, std::max<std::size_t>(1, content.size()),
+                    owner, now_unix_s);
+}
+
+bool JobStore::PutDataset(const std::string& sha256, const std::string& name, std::uint64_t size,
+                          const ReadBytes& read, std::size_t piece_bytes, const std::string& owner,
+                          double now_unix_s) {
+  if (piece_bytes == 0) throw Error("database: a dataset stored in pieces of 0 bytes");
+  const auto own = [&] {
+    db_.Prepare(
+           "INSERT INTO dataset_owners (sha256, owner, size, uploaded) VALUES (?1, ?2, ?3, ?4)"
+           " ON CONFLICT (sha256, owner) DO UPDATE SET uploaded = excluded.uploaded")
+        .Bind(1, sha256)
         .Bind(2, owner)
-        .Bind(3, static_cast<std::int64_t>(content.size()))
+        .Bind(3, static_cast<std::int64_t>(size))
         .Bind(4, now_unix_s)
         .Run();
+  };
+  std::int64_t row = -1;
+  {
+    // The pieces' commits need not reach the disk one by one: the owner's commit below, fully
+    // synchronised, carries them all there, for the WAL is one file written in order.
+    const Synchronous relaxed(db_, "NORMAL");
+    bool present = false;
+    db_.Transaction([&] {
+      // Stored already: held at once, in the transaction that found the bytes, so that no
+      // collection can drop them in between.
+      present = HasDataset(sha256);
+      if (present) {
+        own();
+        return;
+      }
+      db_.Prepare("INSERT INTO datasets (sha256, name, content) VALUES (?1, ?2, zeroblob(?3))")
+          .Bind(1, sha256)
+          .Bind(2, name)
+          .Bind(3, static_cast<std::int64_t>(size))
+          .Run();
+      row = db_.LastInsertId();
+    });
+    if (present) return false;
+    try {
+      std::string piece;
+      for (std::uint64_t offset = 0; offset < size;) {
+        db_.Transaction([&] {
+          Blob blob = db_.OpenBlob("datasets", "content", row);
+          const std::uint64_t end = std::min(size, offset + kBytesPerTransaction);
+          while (offset < end) {
+            piece.resize(
+                static_cast<std::size_t>(std::min<std::uint64_t>(piece_bytes, end - offset)));
+            read(piece);
+            blob.Write(offset, piece);
+            offset += piece.size();
+          }
+        });
+      }
+    } catch (...) {
+      DropRow(row);
+      throw;
+    }
+  }
+  try {
+    db_.Transaction(own);
+  } catch (...) {
+    DropRow(row);
+    throw;
+  }
+  return true;
+}
+
+void JobStore::DropRow(std::int64_t row) noexcept {
+  if (row < 0) return;
+  try {
+    db_.Prepare("DELETE FROM datasets WHERE rowid = ?1").Bind(1, row).Run();
+  } catch (const std::exception&) {
+    // The database refuses even that (its disk is full): the row, held by nobody, is dropped
+    // by DropUnheldDatasets at the next start.
+  }
+}
+
+std::size_t JobStore::DropUnheldDatasets() {
+  std::size_t dropped = 0;
+  db_.Transaction([&] {
+    std::vector<std::string> unowned;
+    Statement q = db_.Prepare(
+        "SELECT sha256 FROM datasets WHERE sha256 NOT IN (SELECT sha256 FROM dataset_owners)");
+    while (q.Step()) unowned.push_back(q.Text(0));
+    dropped = DropIfUnheld(unowned, DatasetsReadByJobs());
   });
-  return added;
+  return dropped;
+}
+
+std::set<std::pair<std::string, std::string>> JobStore::DatasetsReadByJobs() {
+  std::set<std::pair<std::string, std::string>> read_by;
+  Statement jobs = db_.Prepare("SELECT owner, spec FROM jobs");
+  while (jobs.Step()) {
+    proto::JobSpec spec;
+    if (!spec.ParseFromString(jobs.Text(1))) throw Error("database: a job's spec is corrupt");
+    for (std::string& sha : SpecDatasets(spec)) read_by.emplace(jobs.Text(0), std::move(sha));
+  }
+  return read_by;
+}
+
+std::size_t JobStore::DropIfUnheld(const std::vector<std::string>& hashes,
+                                   const std::set<std::pair<std::string, std::string>>& read_by) {
+  std::set<std::string> read;
+  for (const auto& [owner, sha] : read_by) read.insert(sha);
+  Statement held = db_.Prepare("SELECT 1 FROM dataset_owners WHERE sha256 = ?1");
+  Statement remove = db_.Prepare("DELETE FROM datasets WHERE sha256 = ?1");
+  std::size_t dropped = 0;
+  for (const std::string& sha : hashes) {
+    const bool owned = held.Bind(1, sha).Step();
+    held.Reset();
+    if (owned || read.contains(sha)) continue;
+    remove.Bind(1, sha).Run();
+    dropped += static_cast<std::size_t>(db_.Changes());
+  }
+  return dropped;
 }
 
 bool JobStore::OwnsDataset(const std::string& sha256, const std::string& owner) {
@@ -386,17 +516,7 @@ JobStore::Collected JobStore::Collect(double now_unix_s, double retention_s) {
         .Run();
     collected.jobs = static_cast<std::size_t>(db_.Changes());
 
-    std::set<std::pair<std::string, std::string>> read_by;  // (owner, sha256) a job reads
-    std::set<std::string> read;
-    Statement jobs = db_.Prepare("SELECT owner, spec FROM jobs");
-    while (jobs.Step()) {
-      proto::JobSpec spec;
-      if (!spec.ParseFromString(jobs.Text(1))) throw Error("database: a job's spec is corrupt");
-      for (std::string& sha : SpecDatasets(spec)) {
-        read.insert(sha);
-        read_by.emplace(jobs.Text(0), std::move(sha));
-      }
-    }
+    const auto read_by = DatasetsReadByJobs();  // (owner, sha256) a job reads
     std::vector<std::pair<std::string, std::string>> unheld;
     Statement stale = db_.Prepare("SELECT owner, sha256 FROM dataset_owners WHERE uploaded < ?1");
     stale.Bind(1, before);
@@ -405,17 +525,13 @@ JobStore::Collected JobStore::Collect(double now_unix_s, double retention_s) {
       if (!read_by.contains(held)) unheld.push_back(std::move(held));
     }
     Statement drop = db_.Prepare("DELETE FROM dataset_owners WHERE owner = ?1 AND sha256 = ?2");
-    for (const auto& [owner, sha] : unheld) drop.Bind(1, owner).Bind(2, sha).Run();
-
-    std::vector<std::string> orphans;
-    Statement unowned = db_.Prepare(
-        "SELECT sha256 FROM datasets WHERE sha256 NOT IN (SELECT sha256 FROM dataset_owners)");
-    while (unowned.Step()) {
-      if (!read.contains(unowned.Text(0))) orphans.push_back(unowned.Text(0));
+    std::vector<std::string> released;
+    for (const auto& [owner, sha] : unheld) {
+      drop.Bind(1, owner).Bind(2, sha).Run();
+      released.push_back(sha);
     }
-    Statement remove = db_.Prepare("DELETE FROM datasets WHERE sha256 = ?1");
-    for (const std::string& sha : orphans) remove.Bind(1, sha).Run();
-    collected.datasets = orphans.size();
+    // Only bytes whose last owner went now: bytes that never had one are a store under way.
+    collected.datasets = DropIfUnheld(released, read_by);
   });
   return collected;
 }

@@ -3,9 +3,13 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <optional>
+#include <set>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "coordinator/sqlite.h"
@@ -27,6 +31,20 @@ class JobStore {
   // already stored.
   bool PutDataset(const std::string& sha256, const std::string& name, const std::string& content,
                   const std::string& owner, double now_unix_s);
+  // Hands over a dataset's next bytes, in order: fills the whole span it is given.
+  using ReadBytes = std::function<void(std::span<char>)>;
+  // PutDataset of `size` bytes read through `read` in pieces of at most `piece_bytes`, so a large
+  // dataset is never in memory whole: the row is made at its full size (zeroblob), then filled
+  // in transactions of at most 32 MiB, so that other writers get the database in between. The
+  // owner is recorded last, in a transaction synchronised to disk: until
+  // then nobody holds the bytes, so nobody can use them half-written. A store cut short removes
+  // its row; a crash part-way leaves one that DropUnheldDatasets removes.
+  bool PutDataset(const std::string& sha256, const std::string& name, std::uint64_t size,
+                  const ReadBytes& read, std::size_t piece_bytes, const std::string& owner,
+                  double now_unix_s);
+  // Drops the bytes of datasets that no owner holds and no job reads: what a store cut short by
+  // a crash left behind. Returns how many.
+  std::size_t DropUnheldDatasets();
   bool HasDataset(const std::string& sha256);  // held by anyone
   bool OwnsDataset(const std::string& sha256, const std::string& owner);
   // Whether `owner` holds the dataset; if so it counts as uploaded again at `now_unix_s`, so that
@@ -94,7 +112,8 @@ class JobStore {
 
   // Drops what has been kept past `retention_s`: jobs that ended before `now_unix_s -
   // retention_s`, with their results, then each owner's datasets that none of its jobs reads and
-  // that it last uploaded before then.
+  // that it last uploaded before then, and the bytes nobody holds any more. Bytes that had no
+  // owner before (a store under way) are left alone.
   struct Collected {
     std::size_t jobs = 0;
     std::size_t datasets = 0;  // whose bytes were dropped (no owner holds them any more)
@@ -105,6 +124,12 @@ class JobStore {
   void SaveResult(const std::string& job_id, const std::vector<proto::ResultFile>& files);
   // The row of a job id; -1 when there is none.
   std::int64_t JobNumber(const std::string& job_id);
+  // (owner, sha256) of every dataset a job reads.
+  std::set<std::pair<std::string, std::string>> DatasetsReadByJobs();
+  // Drops the bytes of those of `hashes` that no owner holds and no job reads; returns how many.
+  std::size_t DropIfUnheld(const std::vector<std::string>& hashes,
+                           const std::set<std::pair<std::string, std::string>>& read_by);
+  void DropRow(std::int64_t row) noexcept;  // a datasets row a store left half-written
 
   Database db_;
 };

@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <csignal>
 #include <fstream>
 #include <map>
@@ -387,6 +388,75 @@ TEST_F(JobStoreTest, DatasetsAndResultsRoundTrip) {
   EXPECT_EQ(files[0].name(), "report.json");
   EXPECT_EQ(files[1].content(), "0 0 0 0\n");
   EXPECT_TRUE(store.Unfinished().empty());
+}
+
+// A large dataset goes in piece by piece, each piece read only when it is written.
+TEST_F(JobStoreTest, ADatasetStoredInPiecesIsReadBackWhole) {
+  JobStore store(Db());
+  std::string content(100000, '\0');
+  for (std::size_t i = 0; i < content.size(); ++i) content[i] = static_cast<char>(i * 7 % 251);
+  std::size_t at = 0, largest = 0;
+  const JobStore::ReadBytes read = [&](std::span<char> piece) {
+    largest = std::max(largest, piece.size());
+    std::copy_n(content.data() + at, piece.size(), piece.data());
+    at += piece.size();
+  };
+  const std::string sha(64, 'c');
+  EXPECT_TRUE(store.PutDataset(sha, "big.clf", content.size(), read, 4096, "alice", 1.0));
+  EXPECT_EQ(at, content.size());
+  EXPECT_EQ(largest, 4096u);
+  EXPECT_EQ(store.Dataset(sha), content);
+  EXPECT_EQ(store.StoredBytes("alice"), content.size());
+  // Stored once: the second owner's bytes are not read at all.
+  at = 0;
+  EXPECT_FALSE(store.PutDataset(sha, "big.clf", content.size(), read, 4096, "bob", 2.0));
+  EXPECT_EQ(at, 0u);
+  EXPECT_TRUE(store.OwnsDataset(sha, "bob"));
+}
+
+// A store whose bytes cannot be read to the end leaves nothing: no row anybody could find, and no
+// owner.
+TEST_F(JobStoreTest, AStoreCutShortLeavesNothing) {
+  JobStore store(Db());
+  std::size_t pieces = 0;
+  const JobStore::ReadBytes failing = [&](std::span<char> piece) {
+    if (++pieces == 3) throw Error("the spool went");
+    std::fill(piece.begin(), piece.end(), 'x');
+  };
+  const std::string sha(64, 'd');
+  EXPECT_THROW(store.PutDataset(sha, "cut.clf", 10000, failing, 1000, "alice", 1.0), Error);
+  EXPECT_FALSE(store.HasDataset(sha));
+  EXPECT_FALSE(store.OwnsDataset(sha, "alice"));
+  EXPECT_EQ(store.StoredBytes("alice"), 0u);
+}
+
+// What a crash in the middle of a store leaves: bytes nobody holds. They are dropped at the next
+// start, and a collection in the meantime leaves them alone (they may be a store under way).
+TEST_F(JobStoreTest, BytesNobodyHoldsAreDroppedAtStartOnly) {
+  const std::string partial(64, 'a'), held(64, 'b'), read(64, 'c');
+  {
+    JobStore store(Db());
+    store.PutDataset(held, "held.clf", "held bytes", "alice", 1.0);
+    store.PutDataset(read, "read.clf", "read bytes", "alice", 1.0);
+    proto::JobSpec spec = LocalizeSpec(1);
+    spec.mutable_log()->set_sha256(read);
+    store.AddJob(spec, "bob", 1.0);
+  }
+  {
+    // A crashed store: the row went in, the owner never did.
+    Database db(Db());
+    db.Prepare("INSERT INTO datasets (sha256, name, content) VALUES (?1, 'p', zeroblob(10))")
+        .Bind(1, partial)
+        .Run();
+    db.Prepare("DELETE FROM dataset_owners WHERE sha256 = ?1").Bind(1, read).Run();
+  }
+  JobStore store(Db());
+  EXPECT_EQ(store.Collect(100.0, 1000.0).datasets, 0u);
+  EXPECT_TRUE(store.HasDataset(partial)) << "a collection dropped a store under way";
+  EXPECT_EQ(store.DropUnheldDatasets(), 1u);
+  EXPECT_FALSE(store.HasDataset(partial));
+  EXPECT_TRUE(store.HasDataset(held));
+  EXPECT_TRUE(store.HasDataset(read)) << "a job reads it";
 }
 
 // What kill -9 leaves behind: a process that committed and died without closing anything.

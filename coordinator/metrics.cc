@@ -4,7 +4,6 @@
 
 #include <iterator>
 #include <string_view>
-#include <utility>
 
 #include "common/service/job_state.h"
 
@@ -120,22 +119,6 @@ void Metrics::ObserveTaskLatency(double seconds) {
 MetricsSnapshot Metrics::Snapshot() const {
   std::lock_guard lock(mutex_);
   return figures_;
-}
-
-Metrics::UploadInProgress::UploadInProgress(Metrics& metrics) : metrics_(&metrics) {
-  std::lock_guard lock(metrics_->mutex_);
-  ++metrics_->figures_.uploads_in_progress;
-}
-
-Metrics::UploadInProgress::UploadInProgress(UploadInProgress&& other) noexcept
-    : metrics_(std::exchange(other.metrics_, nullptr)) {}
-
-Metrics::UploadInProgress::~UploadInProgress() {
-  if (metrics_ == nullptr) return;
-  std::lock_guard lock(metrics_->mutex_);
-  // Never below 0, even when SetUploadsInProgress was called meanwhile.
-  std::uint64_t& uploads = metrics_->figures_.uploads_in_progress;
-  uploads -= uploads > 0 ? 1 : 0;
 }
 
 }  // namespace evoslam

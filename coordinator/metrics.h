@@ -53,28 +53,10 @@ class Metrics {
   void SetTasks(std::uint64_t in_flight, std::uint64_t waiting);
   void SetWorkers(std::uint64_t live, std::uint64_t quarantined);
   void SetStoredBytes(std::uint64_t bytes);
-  // For a caller that counts the uploads under way itself; one that does not holds an
-  // UploadInProgress for each. (Not both: each overrides what the other counted.)
   void SetUploadsInProgress(std::uint64_t uploads);
   void CountSubmit();          // a submit that made a job
   void CountRepeatedSubmit();  // a submit answered with the job an earlier send made
   void ObserveTaskLatency(double seconds);
-
-  // Counts one upload as under way from its construction to its destruction: a handler holds
-  // one while it handles a single-message upload, an upload of many messages keeps one with its
-  // state until it is stored or given up.
-  class UploadInProgress {
-   public:
-    explicit UploadInProgress(Metrics& metrics);
-    ~UploadInProgress();
-    UploadInProgress(UploadInProgress&& other) noexcept;
-    UploadInProgress(const UploadInProgress&) = delete;
-    UploadInProgress& operator=(const UploadInProgress&) = delete;
-    UploadInProgress& operator=(UploadInProgress&&) = delete;
-
-   private:
-    Metrics* metrics_;  // not owned; null once moved from
-  };
 
   MetricsSnapshot Snapshot() const;
   std::string Render() const { return RenderPrometheus(Snapshot()); }

@@ -2,7 +2,6 @@
 
 #include <gtest/gtest.h>
 
-#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -22,7 +21,7 @@ TEST(MetricsTest, RendersThePrometheusTextFormat) {
   metrics.ObserveTaskLatency(1000);
   metrics.SetWorkers(4, 1);
   metrics.SetStoredBytes(123456789012);
-  Metrics::UploadInProgress upload(metrics);
+  metrics.SetUploadsInProgress(1);
   EXPECT_EQ(metrics.Render(),
             "# HELP evoslam_jobs Jobs the coordinator keeps (ended ones until the retention drops "
             "them), by state.\n"
@@ -90,22 +89,6 @@ TEST(MetricsTest, ALatencyOnABucketsBoundCountsInIt) {
   EXPECT_EQ(s.task_latency_buckets[4], 1u);  // 0.1
   EXPECT_EQ(s.task_latency_count, 1u);
   EXPECT_EQ(s.task_latency_sum_seconds, 0.1);
-}
-
-TEST(MetricsTest, AnUploadCountsWhileItsTicketLives) {
-  Metrics metrics;
-  {
-    Metrics::UploadInProgress first(metrics);
-    std::optional<Metrics::UploadInProgress> second;
-    second.emplace(metrics);
-    EXPECT_EQ(metrics.Snapshot().uploads_in_progress, 2u);
-    const Metrics::UploadInProgress moved(std::move(*second));
-    second.reset();  // moved from: counts nothing any more
-    EXPECT_EQ(metrics.Snapshot().uploads_in_progress, 2u);
-  }
-  EXPECT_EQ(metrics.Snapshot().uploads_in_progress, 0u);
-  metrics.SetUploadsInProgress(3);
-  EXPECT_EQ(metrics.Snapshot().uploads_in_progress, 3u);
 }
 
 // Figures change on one thread while another renders them (run under ThreadSanitizer or

@@ -1,5 +1,6 @@
 #include "coordinator/sqlite.h"
 
+#include <limits>
 #include <string>
 
 #include "common/util/error.h"
@@ -84,6 +85,25 @@ Database::Database(const std::filesystem::path& path) : path_(path) {
   Execute("PRAGMA journal_mode = WAL");
   Execute("PRAGMA synchronous = FULL");
   Execute("PRAGMA foreign_keys = ON");
+}
+
+void Blob::Write(std::uint64_t offset, std::string_view bytes) {
+  if (offset + bytes.size() > static_cast<std::uint64_t>(std::numeric_limits<int>::max())) {
+    throw Error(what_ + ": past 2 GiB");
+  }
+  if (sqlite3_blob_write(blob_.get(), bytes.data(), static_cast<int>(bytes.size()),
+                         static_cast<int>(offset)) != SQLITE_OK) {
+    Fail(db_, what_);
+  }
+}
+
+Blob Database::OpenBlob(const char* table, const char* column, std::int64_t row) {
+  std::string what = "database: writing " + std::string(table) + "." + column;
+  sqlite3_blob* blob = nullptr;  // left null when the open fails
+  if (sqlite3_blob_open(db_.get(), "main", table, column, row, 1, &blob) != SQLITE_OK) {
+    Fail(db_.get(), what);
+  }
+  return Blob(db_.get(), blob, std::move(what));
 }
 
 void Database::Execute(std::string_view sql) {

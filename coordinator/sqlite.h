@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace evoslam {
 
@@ -40,6 +41,25 @@ class Statement {
   std::unique_ptr<sqlite3_stmt, Finalize> stmt_;
 };
 
+// One blob of one row, open for writing in place (sqlite3_blob). A blob keeps its size: one made
+// with zeroblob(n) is filled piece by piece, so a large one is never in memory whole. It must be
+// closed (destroyed) before the transaction it was opened in commits.
+class Blob {
+ public:
+  void Write(std::uint64_t offset, std::string_view bytes);
+
+ private:
+  friend class Database;
+  struct Close {
+    void operator()(sqlite3_blob* b) const { sqlite3_blob_close(b); }
+  };
+  Blob(sqlite3* db, sqlite3_blob* blob, std::string what)
+      : db_(db), blob_(blob), what_(std::move(what)) {}
+  sqlite3* db_;
+  std::unique_ptr<sqlite3_blob, Close> blob_;
+  std::string what_;
+};
+
 // One connection to a database file. Opened in WAL mode with full synchronisation: a committed
 // transaction survives the process being killed, or the machine losing power.
 class Database {
@@ -51,6 +71,8 @@ class Database {
   std::int64_t LastInsertId() const { return sqlite3_last_insert_rowid(db_.get()); }
   // Rows changed by the last INSERT, UPDATE or DELETE.
   int Changes() const { return sqlite3_changes(db_.get()); }
+  // The blob in `column` of `table`'s row `row`, opened for writing.
+  Blob OpenBlob(const char* table, const char* column, std::int64_t row);
 
   // Runs body inside BEGIN IMMEDIATE ... COMMIT; rolls back if it throws.
   template <typename Body>

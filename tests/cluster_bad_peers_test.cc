@@ -73,9 +73,8 @@ TEST_F(ServiceTest, TheClientSocketAnswersBadInputWithTheRightErrorCodes) {
 
   proto::ClientRequest big;
   big.set_request_id(8);
-  big.mutable_upload()->set_name("big.clf");
-  big.mutable_upload()->set_content(std::string(std::size_t{3} << 19, 'x'));  // 1.5 MiB
-  big.mutable_upload()->set_sha256(evoslam::Sha256Hex(big.upload().content()));
+  big.mutable_chunk()->set_upload_id("upload-0");
+  big.mutable_chunk()->set_content(std::string(std::size_t{3} << 19, 'x'));  // 1.5 MiB
   ExpectRefused(raw, {evoslam::Encode(big)}, proto::ERROR_CODE_TOO_LARGE,
                 "a frame over --max-message-mb 1");
 
@@ -103,11 +102,20 @@ TEST_F(ServiceTest, TheClientSocketAnswersBadInputWithTheRightErrorCodes) {
   proto::ClientRequest mismatch;
   mismatch.set_request_id(12);
   mismatch.mutable_upload()->set_name("log.clf");
-  mismatch.mutable_upload()->set_content("these bytes");
   mismatch.mutable_upload()->set_sha256(evoslam::Sha256Hex("other bytes"));
+  mismatch.mutable_upload()->set_size_bytes(11);
+  raw.Send({evoslam::Encode(mismatch)});
+  const auto started = raw.Receive(10s);
+  ASSERT_TRUE(started);
+  const proto::ClientReply start = evoslam::DecodeClientReply(AsBytes(started->front()));
+  ASSERT_TRUE(start.has_upload_started()) << start.DebugString();
+  proto::ClientRequest bytes;
+  bytes.set_request_id(13);
+  bytes.mutable_chunk()->set_upload_id(start.upload_started().upload_id());
+  bytes.mutable_chunk()->set_content("these bytes");
   const proto::ClientReply hash =
-      ExpectRefused(raw, {evoslam::Encode(mismatch)}, proto::ERROR_CODE_INVALID, "a wrong hash");
-  EXPECT_EQ(hash.request_id(), 12u);
+      ExpectRefused(raw, {evoslam::Encode(bytes)}, proto::ERROR_CODE_INVALID, "a wrong hash");
+  EXPECT_EQ(hash.request_id(), 13u);
 
   // Submits: of datasets never uploaded, and with parameters that cannot work.
   proto::DatasetRef ghost;

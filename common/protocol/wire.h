@@ -12,7 +12,8 @@
 namespace evoslam {
 
 // The version of proto/evoslam/service.proto this build speaks; every envelope carries it.
-inline constexpr std::uint32_t kProtocolVersion = 2;
+// 3: datasets travel in chunks (UploadDataset starts an upload, UploadChunks carry its bytes).
+inline constexpr std::uint32_t kProtocolVersion = 3;
 
 // A frame refused at the door, with the code the reply carries.
 class ProtocolError : public Error {
@@ -25,7 +26,8 @@ class ProtocolError : public Error {
 };
 
 struct WireLimits {
-  std::size_t max_frame_bytes = std::size_t{256} << 20;  // a whole log uploaded at once fits
+  // A job's results, or a dataset sent to a worker, travel whole in one frame.
+  std::size_t max_frame_bytes = std::size_t{256} << 20;
 };
 
 // Decode one frame into its envelope. Throws ProtocolError when the frame is larger than the

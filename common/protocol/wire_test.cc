@@ -1,6 +1,7 @@
 #include "common/protocol/wire.h"
 
 #include <google/protobuf/stubs/logging.h>
+#include <google/protobuf/unknown_field_set.h>
 #include <gtest/gtest.h>
 
 #include <string>
@@ -75,6 +76,46 @@ TEST(WireTest, AnotherVersionIsRefusedSayingWhichVersions) {
   unversioned.mutable_heartbeat();
   EXPECT_EQ(RefusalCode(kDecodeWorker, unversioned.SerializeAsString()),
             proto::ERROR_CODE_BAD_VERSION);
+}
+
+// A client of version 2 sent a dataset whole, its bytes in UploadDataset's field 2: the frame is
+// refused by its version, with a message a person can act on, not read as an upload of nothing.
+TEST(WireTest, AVersion2WholeUploadIsRefusedNamingBothVersions) {
+  proto::ClientRequest old;
+  old.set_protocol_version(2);
+  old.set_request_id(5);
+  old.mutable_upload()->set_name("log.clf");
+  old.mutable_upload()->set_sha256(std::string(64, 'a'));
+  old.mutable_upload()
+      ->GetReflection()
+      ->MutableUnknownFields(old.mutable_upload())
+      ->AddLengthDelimited(2, "the whole log");
+  try {
+    DecodeClientRequest(Bytes(old.SerializeAsString()));
+    FAIL() << "accepted";
+  } catch (const ProtocolError& e) {
+    EXPECT_EQ(e.code(), proto::ERROR_CODE_BAD_VERSION);
+    EXPECT_NE(std::string(e.what()).find("speaks protocol version 2, this build speaks " +
+                                         std::to_string(kProtocolVersion)),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(WireTest, UploadChunksRoundTrip) {
+  proto::ClientRequest r;
+  r.mutable_chunk()->set_upload_id("upload-1");
+  r.mutable_chunk()->set_offset(4194304);
+  r.mutable_chunk()->set_content(std::string("\0\xff chunk", 8));
+  const proto::ClientRequest back = DecodeClientRequest(Bytes(Encode(r)));
+  EXPECT_EQ(back.chunk().upload_id(), "upload-1");
+  EXPECT_EQ(back.chunk().offset(), 4194304u);
+  EXPECT_EQ(back.chunk().content(), std::string("\0\xff chunk", 8));
+  proto::ClientRequest start;
+  start.mutable_upload()->set_sha256(std::string(64, 'a'));
+  EXPECT_FALSE(DecodeClientRequest(Bytes(Encode(start))).upload().has_size_bytes());
+  start.mutable_upload()->set_size_bytes(0);
+  EXPECT_TRUE(DecodeClientRequest(Bytes(Encode(start))).upload().has_size_bytes());
 }
 
 TEST(WireTest, TruncatedEmptyAndOversizedFramesAreRefused) {

@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <deque>
+#include <fstream>
 #include <sstream>
+#include <system_error>
 #include <utility>
 
-#include "common/io/file_bytes.h"
 #include "common/service/job_state.h"
 #include "common/util/error.h"
 #include "common/util/random_id.h"
@@ -97,11 +99,20 @@ proto::ClientReply ServiceClient::Call(proto::ClientRequest request, int attempt
   std::vector<std::uint64_t> sent;
   std::optional<proto::ClientReply> reply;
   while (!reply && static_cast<int>(sent.size()) < attempts) {
-    // The last send may have the request: an upload's bytes are not copied for nothing.
+    // The last send may have the request: its bytes are not copied for nothing.
     const bool last = static_cast<int>(sent.size()) + 1 == attempts;
     sent.push_back(last ? Send(std::move(request)) : Send(request));
     reply = Receive(sent, options_.timeout_seconds);
   }
+  return Answer(std::move(reply), attempts);
+}
+
+proto::ClientReply ServiceClient::Await(std::uint64_t request_id) {
+  return Answer(Receive({request_id}, options_.timeout_seconds), 1);
+}
+
+proto::ClientReply ServiceClient::Answer(std::optional<proto::ClientReply> reply,
+                                         int attempts) const {
   if (!reply) {
     throw Error("no answer from the coordinator at " + options_.endpoint + " within " +
                 Seconds(options_.timeout_seconds) +
@@ -114,36 +125,76 @@ proto::ClientReply ServiceClient::Call(proto::ClientRequest request, int attempt
   return std::move(*reply);
 }
 
-proto::DatasetRef ServiceClient::UploadBytes(const std::string& name, const std::string& content) {
-  const std::string sha = Sha256Hex(content);
-  // Ask first with the hash alone: a dataset is sent once, however many jobs use it.
-  proto::ClientRequest ask;
-  ask.mutable_upload()->set_name(name);
-  ask.mutable_upload()->set_sha256(sha);
-  bool present = false;
-  if (!content.empty()) {
-    try {
-      present = Call(ask).stored().already_present();
-    } catch (const ProtocolError& e) {
-      if (e.code() != proto::ERROR_CODE_UNKNOWN_DATASET) throw;
+proto::DatasetRef ServiceClient::UploadFrom(const std::string& name, const std::string& sha256,
+                                            std::uint64_t size, const ReadBytes& read) {
+  proto::DatasetRef ref;
+  ref.set_sha256(sha256);
+  ref.set_size_bytes(size);
+  ref.set_name(name);
+  // One question starts the upload, or finds that the bytes need not travel: a dataset is sent
+  // once, however many jobs use it.
+  proto::ClientRequest start;
+  start.mutable_upload()->set_name(name);
+  start.mutable_upload()->set_sha256(sha256);
+  start.mutable_upload()->set_size_bytes(size);
+  const proto::ClientReply started = Call(std::move(start));
+  if (started.has_stored()) return ref;
+  if (!started.has_upload_started() || started.upload_started().chunk_bytes() == 0) {
+    throw Error("the coordinator at " + options_.endpoint + " answered the upload of " + name +
+                " with neither an upload nor the dataset");
+  }
+  const std::string& id = started.upload_started().upload_id();
+  const std::uint64_t chunk_bytes = started.upload_started().chunk_bytes();
+  const std::size_t window = std::max<std::uint32_t>(1, started.upload_started().window());
+  // Up to `window` chunks travel ahead of their answers, so the next one is on its way while the
+  // coordinator writes the last. Answers come in order.
+  std::deque<std::uint64_t> waiting;
+  std::uint64_t offset = 0;
+  bool sent_last = false;
+  for (;;) {
+    while (!sent_last && waiting.size() < window) {
+      proto::ClientRequest request;
+      proto::UploadChunk& chunk = *request.mutable_chunk();
+      chunk.set_upload_id(id);
+      chunk.set_offset(offset);
+      std::string& bytes = *chunk.mutable_content();
+      bytes.resize(static_cast<std::size_t>(std::min(chunk_bytes, size - offset)));
+      read(bytes);
+      offset += bytes.size();
+      sent_last = offset == size;
+      waiting.push_back(Send(std::move(request)));
+    }
+    const proto::ClientReply answer = Await(waiting.front());
+    waiting.pop_front();
+    if (answer.has_stored()) return ref;
+    if (!answer.has_chunk_stored() || (sent_last && waiting.empty())) {
+      throw Error("the coordinator at " + options_.endpoint + " answered a chunk of " + name +
+                  " with neither its receipt nor the dataset");
     }
   }
-  if (!present) {
-    proto::ClientRequest upload;
-    upload.mutable_upload()->set_name(name);
-    upload.mutable_upload()->set_sha256(sha);
-    upload.mutable_upload()->set_content(content);
-    Call(std::move(upload));
-  }
-  proto::DatasetRef ref;
-  ref.set_sha256(sha);
-  ref.set_size_bytes(content.size());
-  ref.set_name(name);
-  return ref;
+}
+
+proto::DatasetRef ServiceClient::UploadBytes(const std::string& name, const std::string& content) {
+  std::size_t at = 0;
+  return UploadFrom(name, Sha256Hex(content), content.size(), [&](std::span<char> piece) {
+    std::copy_n(content.data() + at, piece.size(), piece.data());
+    at += piece.size();
+  });
 }
 
 proto::DatasetRef ServiceClient::Upload(const std::filesystem::path& file) {
-  return UploadBytes(file.string(), ReadFileBytes(file));
+  // Hashed, then sent, a chunk at a time: a large log need not fit in memory.
+  const std::string sha = Sha256HexOfFile(file);
+  std::ifstream in(file, std::ios::binary);
+  std::error_code error;
+  const std::uintmax_t size = std::filesystem::file_size(file, error);
+  if (error) throw InputError(file.string(), 0, "cannot read its size: " + error.message());
+  if (!in) throw InputError(file.string(), 0, "cannot open it");
+  return UploadFrom(file.string(), sha, size, [&](std::span<char> piece) {
+    if (!in.read(piece.data(), static_cast<std::streamsize>(piece.size()))) {
+      throw InputError(file.string(), 0, "cannot read it: it changed while it was uploaded");
+    }
+  });
 }
 
 std::string NewSubmitId() { return RandomHexId(16); }

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -37,9 +38,16 @@ class ServiceClient {
   ServiceClient(zmq::context_t& context, ClientOptions options);
 
   // Uploads a file unless the coordinator already has its bytes, and returns its reference. The
-  // reference is named by the path as given, so that errors found in the file say which file.
+  // reference is named by the path as given, so that errors found in the file say which file. The
+  // bytes go in the chunks the coordinator asks for, read from the file one at a time.
   proto::DatasetRef Upload(const std::filesystem::path& file);
   proto::DatasetRef UploadBytes(const std::string& name, const std::string& content);
+  // Fills the span with the dataset's next bytes.
+  using ReadBytes = std::function<void(std::span<char>)>;
+  // Uploads `size` bytes hashing to `sha256`, read through `read` a chunk at a time, unless the
+  // coordinator already has them.
+  proto::DatasetRef UploadFrom(const std::string& name, const std::string& sha256,
+                               std::uint64_t size, const ReadBytes& read);
   // Submits under a new submit id and returns the job's id.
   std::string Submit(const proto::JobSpec& spec);
   // Submits under `submit_id`: again with the same spec, the same job (as long as the coordinator
@@ -62,6 +70,10 @@ class ServiceClient {
 
  private:
   std::uint64_t Send(proto::ClientRequest request);
+  // The reply to `request_id`; an error reply, or none in time, throws as Call does.
+  proto::ClientReply Await(std::uint64_t request_id);
+  // `reply`, unless it is an error or none came to any of `attempts` sends: then throws.
+  proto::ClientReply Answer(std::optional<proto::ClientReply> reply, int attempts) const;
   // The next reply to one of `request_ids`, waiting at most `timeout_seconds`; nullopt on
   // timeout.
   std::optional<proto::ClientReply> Receive(const std::vector<std::uint64_t>& request_ids,

@@ -64,10 +64,12 @@ std::array<std::uint8_t, 32> Sha256::Finish() {
   return digest;
 }
 
+std::string Sha256::FinishHex() { return ToHex(Finish()); }
+
 std::string Sha256Hex(std::string_view data) {
   Sha256 hasher;
   hasher.Update(data);
-  return ToHex(hasher.Finish());
+  return hasher.FinishHex();
 }
 
 std::string Sha256HexOfFile(const std::filesystem::path& path) {
@@ -83,7 +85,7 @@ std::string Sha256HexOfFile(const std::filesystem::path& path) {
     if (got < chunk.size()) break;
   }
   if (std::ferror(file.get())) throw InputError(source, 0, "cannot read: " + ErrnoText(errno));
-  return ToHex(hasher.Finish());
+  return hasher.FinishHex();
 }
 
 bool IsSha256Hex(std::string_view text) {

@@ -28,6 +28,8 @@ class Sha256 {
   // The digest of everything given to Update. The hasher is spent afterwards: a further Update
   // or Finish throws Error.
   std::array<std::uint8_t, 32> Finish();
+  // Finish's digest as 64 lowercase hex digits, the form the protocol names datasets by.
+  std::string FinishHex();
 
  private:
   void Consume(const unsigned char* data, std::size_t size);

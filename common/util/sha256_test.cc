@@ -118,6 +118,17 @@ TEST(Sha256Test, UpdateAfterFinishThrows) {
   EXPECT_THROW(hasher.Finish(), Error);
 }
 
+// An upload is hashed chunk by chunk as it arrives; its hex digest must be Sha256Hex's.
+TEST(Sha256Test, FinishHexOfChunkedUpdatesIsTheOneShotHex) {
+  const std::string message = PatternBytes(1000);
+  Sha256 hasher;
+  for (std::size_t at = 0; at < message.size(); at += 96) {
+    hasher.Update(std::string_view(message).substr(at, 96));
+  }
+  EXPECT_EQ(hasher.FinishHex(), Sha256Hex(message));
+  EXPECT_THROW(hasher.FinishHex(), Error);
+}
+
 TEST(Sha256Test, FileHashEqualsStringHash) {
   const TempDir dir;
   // Empty, one partial chunk, and more than one 64 KiB read chunk with a partial one at the end.
