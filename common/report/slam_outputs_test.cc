@@ -72,7 +72,8 @@ SlamResult ResultAtTruth(const Dataset& log, const Eigen::Vector2d& offset = {0,
                .odometry_stalls = {},
                .seconds = 0.0,
                .evaluations = 0,
-               .method_report = {}};
+               .method_report = {},
+               .pareto_fronts = {}};
   const LoopConstraint loop{2, 25, r.trajectory[2].pose.inverse() * r.trajectory[25].pose};
   r.loops.push_back({loop, 0.8, 0.15});
   r.seconds = 1.875;
