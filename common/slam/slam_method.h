@@ -1,6 +1,7 @@
 #ifndef EVOSLAM_COMMON_SLAM_SLAM_METHOD_H_
 #define EVOSLAM_COMMON_SLAM_SLAM_METHOD_H_
 
+#include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -52,6 +53,15 @@ struct SlamHooks {
   std::function<IslandStepper(const proto::ProblemSpec& task)> islands;
 };
 
+// The Pareto front a multi-objective search ended with (all objectives minimised), for the outputs.
+struct ParetoFront {
+  std::string label;                    // which search, e.g. "window 2: scans 120-241"
+  std::vector<std::string> objectives;  // the objectives' names, one per row of f
+  Eigen::MatrixXd f;                    // objectives x members
+  std::vector<double> start;            // the objectives where the search started; empty: unknown
+  std::size_t chosen = 0;               // the member the result applies
+};
+
 // What every SLAM method returns.
 struct SlamResult {
   std::vector<StampedPose> trajectory;  // one pose per scan mapped, the laser's
@@ -63,6 +73,8 @@ struct SlamResult {
   std::uint64_t evaluations = 0;  // fitness evaluations of every search
   // The method's own report fields (its message in SlamReport), filled by the method.
   proto::SlamReport method_report;
+  // The fronts of a method whose searches have several objectives, in the order it ran them.
+  std::vector<ParetoFront> pareto_fronts = {};
 };
 
 // A command-line flag of a method's: it sets the parameter `param` (a dotted path from the top)

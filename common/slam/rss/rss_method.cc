@@ -118,7 +118,8 @@ SlamResult RssMethod::Run(const Dataset& dataset, const proto::SlamParams& param
                     .odometry_stalls = std::move(run.odometry_stalls),
                     .seconds = run.times.total,
                     .evaluations = run.local_evaluations + run.global_evaluations,
-                    .method_report = {}};
+                    .method_report = {},
+                    .pareto_fronts = {}};
   *result.method_report.mutable_rss() = RunReport(run);
   return result;
 }
