@@ -20,12 +20,13 @@ if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
   endif()
 endif()
 # Cold code: test binaries (set-up and assertions), the programs' mains and the command line's
-# commands (argument parsing, messages). What they run that is hot lives in the libraries. In the
-# sanitizer build cold code compiles at -Og, which halves its compile time against -O1 (CLI11,
-# header-only, costs some 30 s per file that builds a CLI::App at -O1 with the sanitizers) without
-# slowing the libraries' hot loops.
+# commands (argument parsing, messages). What they run that is hot lives in the libraries, which
+# keep the build type's optimisation. Cold code compiles at -Og in optimised and sanitizer builds:
+# test units then take 40 % less time to compile than at -O3 (they are half of a Release build),
+# and in the sanitizer build half of what -O1 takes (CLI11, header-only, costs some 30 s per file
+# that builds a CLI::App at -O1 with the sanitizers). A Debug build keeps -O0 for the debugger.
 set(EVOSLAM_COLD_OPTIONS ${EVOSLAM_WARNINGS})
-if(EVOSLAM_SANITIZE)
+if(EVOSLAM_SANITIZE OR CMAKE_BUILD_TYPE MATCHES "^(Release|RelWithDebInfo|MinSizeRel)$")
   list(APPEND EVOSLAM_COLD_OPTIONS -Og)
 endif()
 # ctest runs test binaries side by side; OpenMP threads that spin while waiting would then steal
