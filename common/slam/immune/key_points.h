@@ -43,8 +43,9 @@ void ValidateKeyPointParams(const proto::KeyPointParams& params);
 // sightings from a viewpoint at least min_view_shift_m from those already counted count: a robot
 // that stands still, or turns on the spot, sees the same line of sight again and brings no new
 // evidence. A cell whose belief reaches confirm_belief is a key point, unless a stronger one (more
-// independent sightings, then more sightings, then the earlier first sighting) lies within two
-// cells: their gathered sightings would overlap, so they are one point of the world.
+// independent sightings, then more sightings, then more in the cell itself, then a centre nearer
+// their mean) lies within two cells: their gathered sightings would overlap, so they are one point
+// of the world.
 //
 // Throws evoslam::Error for invalid parameters, a max_range_m that is not positive and finite, or
 // more poses than scans.

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <numbers>
+#include <span>
 #include <string>
 #include <vector>
 
