@@ -102,11 +102,13 @@ std::vector<WindowKeyPoint> KeyPointsOf(std::span<const KeyPoint> key_points, st
   return seen;
 }
 
-// The scans that sight a key point: segments around them are short (004 §4).
+// One scan per key point, the middle of its sightings: the segment around it is short (004 §4:
+// 0.2 m at every key point grid). Every sighting would make a real log's segments short wherever
+// a corner is in view (Intel: some 6,000 sightings of 225 key points).
 std::vector<std::size_t> SightingScans(std::span<const KeyPoint> key_points) {
   std::vector<std::size_t> scans;
   for (const KeyPoint& k : key_points) {
-    for (const KeyPointSighting& s : k.sightings) scans.push_back(s.scan);
+    if (!k.sightings.empty()) scans.push_back(k.sightings[k.sightings.size() / 2].scan);
   }
   std::sort(scans.begin(), scans.end());
   scans.erase(std::unique(scans.begin(), scans.end()), scans.end());
