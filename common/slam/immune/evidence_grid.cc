@@ -84,7 +84,10 @@ void EvidenceGrid::Change(std::span<const PlacedScan> scans) {
     return;
   }
   EvidenceSumWriter<kAdd> writer{occupied_.data(), empty_.data()};
-  for (const PlacedScan& s : scans) evidence_trace::TraceScan(geometry_, weights_, s, writer);
+  const evidence_trace::CellNumbering numbering{.stride = geometry_.width()};
+  for (const PlacedScan& s : scans) {
+    evidence_trace::TraceScan(geometry_, weights_, numbering, s, writer);
+  }
   Recount();
 }
 
@@ -92,7 +95,10 @@ template <bool kAdd>
 void EvidenceGrid::ChangeTracked(std::span<const PlacedScan> scans) {
   EvidenceTrackedWriter<kAdd> writer{occupied_.data(), empty_.data(), touched_bits_.data(),
                                      touched_,         scorer_,       totals_};
-  for (const PlacedScan& s : scans) evidence_trace::TraceScan(geometry_, weights_, s, writer);
+  const evidence_trace::CellNumbering numbering{.stride = geometry_.width()};
+  for (const PlacedScan& s : scans) {
+    evidence_trace::TraceScan(geometry_, weights_, numbering, s, writer);
+  }
   for (const std::uint32_t cell : touched_) {
     totals_.Add(scorer_.Score(occupied_[cell], empty_[cell]), 1);
     touched_bits_[cell / 64] = 0;

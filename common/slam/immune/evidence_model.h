@@ -85,10 +85,23 @@ class EmptyWeights {
 
   // The units of an empty reading whose stretch of beam has its middle `t_cells` cells from the
   // laser (0 <= t_cells <= max range; a bit past it is clamped).
-  std::uint32_t at(double t_cells) const {
-    const auto bin = static_cast<std::size_t>(t_cells * kEvidenceBinsPerCell);
-    return units_[bin < units_.size() ? bin : units_.size() - 1];
-  }
+  std::uint32_t at(double t_cells) const { return View(*this).at(t_cells); }
+
+  // The table as a value, for loops that would otherwise reload the vector's bounds after every
+  // store they make.
+  class View {
+   public:
+    explicit View(const EmptyWeights& weights)
+        : units_(weights.units_.data()), last_(weights.units_.size() - 1) {}
+    std::uint32_t at(double t_cells) const {
+      const auto bin = static_cast<std::size_t>(t_cells * kEvidenceBinsPerCell);
+      return units_[bin < last_ ? bin : last_];
+    }
+
+   private:
+    const std::uint32_t* units_;
+    std::size_t last_;
+  };
 
  private:
   std::vector<std::uint32_t> units_;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <thread>
 #include <vector>
 
@@ -50,6 +51,46 @@ TEST(EvidenceOverlayTest, ScoreEqualsTheGridRebuiltWithTheChange) {
   // The base is as it was, and an empty change scores as the base.
   ExpectSame(overlay.ScoreTotals({}, {}), base.totals());
   ExpectSame(overlay.ScoreTotals(placed, placed), base.totals());
+}
+
+TEST(EvidenceOverlayTest, StretchTakenOutOnceScoresEveryCandidate) {
+  const proto::EvidenceGridParams params;
+  const PreparedScans prepared(SimulatedRoomScans(0.2), params);
+  const std::vector<PlacedScan>& placed = prepared.placed;
+  EvidenceGrid base(EvidenceRoomGeometry(6, 4), params);
+  base.Add(placed);
+  EvidenceOverlay overlay(base);
+  const std::size_t begin = 20;
+  std::vector<PlacedScan> window(placed.begin() + begin, placed.begin() + begin + 10);
+  overlay.SetRemoved(window);
+  window.clear();  // what SetRemoved needs of the scans it keeps
+  for (const std::uint64_t seed : {4, 5, 6}) {
+    const std::vector<PlacedScan> moved =
+        Perturbed({placed.begin() + begin, placed.begin() + begin + 10}, 0.3, 0.2, seed);
+    ExpectSame(overlay.ScoreAddedTotals(moved), Rebuilt(placed, begin, moved, params));
+  }
+  // Nothing taken out: only what is put in counts.
+  overlay.SetRemoved({});
+  EvidenceGrid more(EvidenceRoomGeometry(6, 4), params);
+  more.Add(placed);
+  more.Add(placed[0]);
+  ExpectSame(overlay.ScoreAddedTotals({&placed[0], 1}), more.totals());
+}
+
+TEST(EvidenceOverlayTest, ScansReachingPastTheGridMatchTheGrid) {
+  const proto::EvidenceGridParams params;
+  const PreparedScans prepared(SimulatedRoomScans(), params);
+  const std::vector<PlacedScan>& placed = prepared.placed;
+  EvidenceGrid base(EvidenceRoomGeometry(6, 4), params);
+  base.Add(placed);
+  EvidenceOverlay overlay(base);
+  const std::vector<PlacedScan> window(placed.begin(), placed.begin() + 4);
+  std::vector<PlacedScan> moved = window;
+  moved[0].pose = Pose2(-2.5, 2.0, 0.0);   // the laser off the grid, its beams coming in
+  moved[1].pose = Pose2(6.5, 3.9, 0.7);    // in a corner of the grid, beams leaving it
+  moved[2].pose = Pose2(-40.0, 9.0, 0.0);  // nowhere near
+  moved[3].pose = Pose2(std::nan(""), 1.0, 0.0);
+  ExpectSame(overlay.ScoreTotals(window, moved), Rebuilt(placed, 0, moved, params));
 }
 
 TEST(EvidenceOverlayTest, RemovingOnlyOrAddingOnlyMatchesTheGrid) {

@@ -20,6 +20,7 @@ EvidenceScan::EvidenceScan(const LaserScan& scan, const proto::EvidenceGridParam
                       .range_m = std::min(range, params.max_range_m()),
                       .occupied_units = cut ? 0 : EvidenceUnits(ReadingMass(params, range))};
     total_range_m_ += beam.range_m;
+    max_range_m_ = std::max(max_range_m_, beam.range_m);
     beams_.push_back(beam);
   }
 }

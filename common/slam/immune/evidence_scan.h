@@ -32,10 +32,13 @@ class EvidenceScan {
   std::span<const EvidenceBeam> beams() const { return beams_; }
   // The summed length of the beams, m: what tracing the scan costs.
   double total_range_m() const { return total_range_m_; }
+  // The longest beam, m: how far from the laser the scan reaches.
+  double max_range_m() const { return max_range_m_; }
 
  private:
   std::vector<EvidenceBeam> beams_;
   double total_range_m_ = 0;
+  double max_range_m_ = 0;
 };
 
 // A prepared scan and the laser's pose in the world.

@@ -36,16 +36,25 @@ inline int ClampCell(double v, int n) {
   return static_cast<int>(std::clamp(std::floor(v), 0.0, static_cast<double>(n - 1)));
 }
 
+// How a visitor numbers the cells: cell (x, y) of the grid is (y - y0) * stride + (x - x0), so that
+// an overlay can keep its changes for just the part of the grid its scans reach.
+struct CellNumbering {
+  int x0 = 0;
+  int y0 = 0;
+  std::ptrdiff_t stride = 0;
+};
+
 // Traces one beam from `o` (in cells) along the unit direction `d` for `length` cells, the part in
 // the grid only. Amanatides and Woo's walk from cell to cell; counting the steps left on each axis
 // makes it end on the end cell whatever the rounding of the crossings. A cell's empty reading is
 // weighed at the middle of the stretch of beam inside it.
 template <typename Visitor>
-void TraceBeam(const GridGeometry& grid, const EmptyWeights& weights, double ox, double oy,
-               double dx, double dy, double length, std::uint32_t occupied_units,
-               Visitor& visitor) {
+void TraceBeam(const GridGeometry& grid, const EmptyWeights& weights,
+               const CellNumbering& numbering, double ox, double oy, double dx, double dy,
+               double length, std::uint32_t occupied_units, Visitor& visitor) {
   const int w = grid.width();
   const int h = grid.height();
+  const EmptyWeights::View empty_units(weights);
   double t0 = 0.0;
   double t1 = length;
   ClipAxis(ox, dx, w, t0, t1);
@@ -63,18 +72,18 @@ void TraceBeam(const GridGeometry& grid, const EmptyWeights& weights, double ox,
   int left_x = std::abs(last_x - x);
   int left_y = std::abs(last_y - y);
   const int step_x = last_x >= x ? 1 : -1;
-  const std::ptrdiff_t step_row = last_y >= y ? w : -static_cast<std::ptrdiff_t>(w);
+  const std::ptrdiff_t step_row = last_y >= y ? numbering.stride : -numbering.stride;
   constexpr double kNever = std::numeric_limits<double>::infinity();
   const double every_x = left_x > 0 ? std::abs(1.0 / dx) : kNever;
   const double every_y = left_y > 0 ? std::abs(1.0 / dy) : kNever;
   double next_x = left_x > 0 ? (x + (step_x > 0) - ox) / dx : kNever;
   double next_y = left_y > 0 ? (y + (step_row > 0) - oy) / dy : kNever;
-  auto cell = static_cast<std::ptrdiff_t>(grid.Index(x, y));
+  std::ptrdiff_t cell = (y - numbering.y0) * numbering.stride + (x - numbering.x0);
   double t_in = t0;
   for (int n = left_x + left_y; n > 0; --n) {
     const bool along_x = next_x < next_y;
     const double t_out = along_x ? next_x : next_y;
-    visitor.Empty(static_cast<std::size_t>(cell), weights.at(0.5 * (t_in + t_out)));
+    visitor.Empty(static_cast<std::size_t>(cell), empty_units.at(0.5 * (t_in + t_out)));
     t_in = t_out;
     if (along_x) {
       cell += step_x;
@@ -87,15 +96,15 @@ void TraceBeam(const GridGeometry& grid, const EmptyWeights& weights, double ox,
   if (hit) {
     visitor.Occupied(static_cast<std::size_t>(cell), occupied_units);
   } else {
-    visitor.Empty(static_cast<std::size_t>(cell), weights.at(0.5 * (t_in + t1)));
+    visitor.Empty(static_cast<std::size_t>(cell), empty_units.at(0.5 * (t_in + t1)));
   }
 }
 
 // Traces every beam of a placed scan. A pose that is not finite puts the scan nowhere: it gives
 // nothing, as points outside the grid give nothing.
 template <typename Visitor>
-void TraceScan(const GridGeometry& grid, const EmptyWeights& weights, const PlacedScan& placed,
-               Visitor& visitor) {
+void TraceScan(const GridGeometry& grid, const EmptyWeights& weights,
+               const CellNumbering& numbering, const PlacedScan& placed, Visitor& visitor) {
   const Pose2& pose = placed.pose;
   if (!std::isfinite(pose.x()) || !std::isfinite(pose.y()) || !std::isfinite(pose.theta())) {
     return;
@@ -106,7 +115,7 @@ void TraceScan(const GridGeometry& grid, const EmptyWeights& weights, const Plac
   const double oy = grid.CellY(pose.y());
   const double cells_per_m = 1.0 / grid.resolution();
   for (const EvidenceBeam& beam : placed.scan->beams()) {
-    TraceBeam(grid, weights, ox, oy, c * beam.x - s * beam.y, s * beam.x + c * beam.y,
+    TraceBeam(grid, weights, numbering, ox, oy, c * beam.x - s * beam.y, s * beam.x + c * beam.y,
               beam.range_m * cells_per_m, beam.occupied_units, visitor);
   }
 }
