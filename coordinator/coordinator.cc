@@ -661,8 +661,8 @@ void Coordinator::Impl::RefreshMetrics(Clock::time_point now) {
   metrics_.SetWorkers(table_.size() - quarantined, quarantined);
   metrics_.SetTasks(table_.busy(), board_.waiting());
   metrics_.SetUploadsInProgress(uploads_.size());
-  metrics_.SetJobs(reader_.CountJobs());
-  metrics_.SetStoredBytes(reader_.TotalStoredBytes());
+  const JobStore::Totals totals = reader_.CountTotals();
+  metrics_.SetStored(totals.jobs, totals.stored_bytes);
 }
 
 void Coordinator::Impl::Collect() {

@@ -436,22 +436,24 @@ std::size_t JobStore::CountUnfinished() {
   return static_cast<std::size_t>(q.Int(0));
 }
 
-std::map<proto::JobState, std::uint64_t> JobStore::CountJobs() {
-  Statement q = db_.Prepare("SELECT state, COUNT(*) FROM jobs GROUP BY state");
-  std::map<proto::JobState, std::uint64_t> by_state;
-  while (q.Step()) {
-    by_state[static_cast<proto::JobState>(q.Int(0))] = static_cast<std::uint64_t>(q.Int(1));
-  }
-  return by_state;
-}
-
-std::uint64_t JobStore::TotalStoredBytes() {
-  // length() of a blob reads its size from the row's header, not its pages.
+JobStore::Totals JobStore::CountTotals() {
+  // One statement is one snapshot of the database: the jobs and the bytes agree, whatever
+  // another connection commits meanwhile. length() of a blob reads its size from the row's
+  // header, not its pages. The bytes come as the row of state -1.
   Statement q = db_.Prepare(
-      "SELECT (SELECT COALESCE(SUM(length(content)), 0) FROM datasets)"
+      "SELECT state, COUNT(*) FROM jobs GROUP BY state"
+      " UNION ALL SELECT -1, (SELECT COALESCE(SUM(length(content)), 0) FROM datasets)"
       " + (SELECT COALESCE(SUM(length(content)), 0) FROM results)");
-  q.Step();
-  return static_cast<std::uint64_t>(q.Int(0));
+  Totals totals;
+  while (q.Step()) {
+    const auto count = static_cast<std::uint64_t>(q.Int(1));
+    if (q.Int(0) < 0) {
+      totals.stored_bytes = count;
+    } else {
+      totals.jobs[static_cast<proto::JobState>(q.Int(0))] = count;
+    }
+  }
+  return totals;
 }
 
 void JobStore::SaveCheckpoint(const std::string& job_id, std::uint32_t island, std::uint64_t epoch,

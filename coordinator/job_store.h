@@ -92,10 +92,13 @@ class JobStore {
   bool Succeed(const std::string& job_id, const std::vector<proto::ResultFile>& files,
                double now_unix_s);
   std::size_t CountUnfinished();
-  // The jobs kept, by state; a state no job is in is absent.
-  std::map<proto::JobState, std::uint64_t> CountJobs();
-  // The bytes of every dataset and every job's result kept, each stored once.
-  std::uint64_t TotalStoredBytes();
+  // What the store keeps, read at one moment.
+  struct Totals {
+    std::map<proto::JobState, std::uint64_t> jobs;  // by state; a state no job is in is absent
+    std::uint64_t stored_bytes = 0;  // every dataset and every job's result, each stored once
+    bool operator==(const Totals&) const = default;
+  };
+  Totals CountTotals();
 
   // A job's latest checkpoints, one per slot (a localization keeps one, its whole state; an
   // island job may keep one per island), replaced as the job advances.

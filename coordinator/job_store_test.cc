@@ -319,8 +319,7 @@ TEST_F(JobStoreTest, CollectingAJobDropsItsSubmitId) {
 // What the metrics report: jobs by state, and the bytes kept, a dataset two owners hold once.
 TEST_F(JobStoreTest, CountsJobsByStateAndTheBytesKept) {
   JobStore store(Db());
-  EXPECT_TRUE(store.CountJobs().empty());
-  EXPECT_EQ(store.TotalStoredBytes(), 0u);
+  EXPECT_EQ(store.CountTotals(), JobStore::Totals{});
   const std::string a = store.AddJob(LocalizeSpec(1), "", 1.0);
   const std::string b = store.AddJob(LocalizeSpec(2), "", 1.0);
   store.AddJob(LocalizeSpec(3), "", 1.0);
@@ -329,13 +328,12 @@ TEST_F(JobStoreTest, CountsJobsByStateAndTheBytesKept) {
   report.set_name("report.json");
   report.set_content("{\"ok\": 1}");
   EXPECT_TRUE(store.Succeed(b, {report}, 2.0));
-  EXPECT_EQ(store.CountJobs(),
-            (std::map<proto::JobState, std::uint64_t>{{proto::JOB_STATE_QUEUED, 1},
-                                                      {proto::JOB_STATE_RUNNING, 1},
-                                                      {proto::JOB_STATE_SUCCEEDED, 1}}));
+  const std::map<proto::JobState, std::uint64_t> by_state = {
+      {proto::JOB_STATE_QUEUED, 1}, {proto::JOB_STATE_RUNNING, 1}, {proto::JOB_STATE_SUCCEEDED, 1}};
+  EXPECT_EQ(store.CountTotals(), (JobStore::Totals{.jobs = by_state, .stored_bytes = 9}));
   store.PutDataset(std::string(64, 'c'), "log.clf", "12345", "alice", 1.0);
   store.PutDataset(std::string(64, 'c'), "log.clf", "12345", "bob", 1.0);
-  EXPECT_EQ(store.TotalStoredBytes(), 5u + 9u);
+  EXPECT_EQ(store.CountTotals(), (JobStore::Totals{.jobs = by_state, .stored_bytes = 5 + 9}));
 }
 
 TEST_F(JobStoreTest, UnknownAndMalformedJobIdsFindNothing) {

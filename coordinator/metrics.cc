@@ -67,12 +67,14 @@ std::string RenderPrometheus(const MetricsSnapshot& s) {
   return out;
 }
 
-void Metrics::SetJobs(const std::map<proto::JobState, std::uint64_t>& by_state) {
+void Metrics::SetStored(const std::map<proto::JobState, std::uint64_t>& jobs_by_state,
+                        std::uint64_t bytes) {
   std::lock_guard lock(mutex_);
   for (std::size_t i = 0; i < kJobStates.size(); ++i) {
-    const auto it = by_state.find(kJobStates[i]);
-    figures_.jobs[i] = it == by_state.end() ? 0 : it->second;
+    const auto it = jobs_by_state.find(kJobStates[i]);
+    figures_.jobs[i] = it == jobs_by_state.end() ? 0 : it->second;
   }
+  figures_.stored_bytes = bytes;
 }
 
 void Metrics::SetTasks(std::uint64_t in_flight, std::uint64_t waiting) {
@@ -85,11 +87,6 @@ void Metrics::SetWorkers(std::uint64_t live, std::uint64_t quarantined) {
   std::lock_guard lock(mutex_);
   figures_.workers_live = live;
   figures_.workers_quarantined = quarantined;
-}
-
-void Metrics::SetStoredBytes(std::uint64_t bytes) {
-  std::lock_guard lock(mutex_);
-  figures_.stored_bytes = bytes;
 }
 
 void Metrics::SetUploadsInProgress(std::uint64_t uploads) {

@@ -49,10 +49,12 @@ std::string RenderPrometheus(const MetricsSnapshot& snapshot);
 // them all: every change is a few additions.
 class Metrics {
  public:
-  void SetJobs(const std::map<proto::JobState, std::uint64_t>& by_state);
+  // The figures read from the database, set together so that no scrape sees a job's end
+  // without its result's bytes.
+  void SetStored(const std::map<proto::JobState, std::uint64_t>& jobs_by_state,
+                 std::uint64_t bytes);
   void SetTasks(std::uint64_t in_flight, std::uint64_t waiting);
   void SetWorkers(std::uint64_t live, std::uint64_t quarantined);
-  void SetStoredBytes(std::uint64_t bytes);
   void SetUploadsInProgress(std::uint64_t uploads);
   void CountSubmit();          // a submit that made a job
   void CountRepeatedSubmit();  // a submit answered with the job an earlier send made

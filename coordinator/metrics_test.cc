@@ -11,7 +11,7 @@ namespace {
 
 TEST(MetricsTest, RendersThePrometheusTextFormat) {
   Metrics metrics;
-  metrics.SetJobs({{proto::JOB_STATE_QUEUED, 2}, {proto::JOB_STATE_SUCCEEDED, 5}});
+  metrics.SetStored({{proto::JOB_STATE_QUEUED, 2}, {proto::JOB_STATE_SUCCEEDED, 5}}, 123456789012);
   metrics.CountSubmit();
   metrics.CountSubmit();
   metrics.CountRepeatedSubmit();
@@ -20,7 +20,6 @@ TEST(MetricsTest, RendersThePrometheusTextFormat) {
   metrics.ObserveTaskLatency(0.75);
   metrics.ObserveTaskLatency(1000);
   metrics.SetWorkers(4, 1);
-  metrics.SetStoredBytes(123456789012);
   metrics.SetUploadsInProgress(1);
   EXPECT_EQ(metrics.Render(),
             "# HELP evoslam_jobs Jobs the coordinator keeps (ended ones until the retention drops "

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "common/image/bitmap_font.h"
+#include "common/image/marker.h"
 
 namespace evoslam {
 namespace {
@@ -35,6 +36,11 @@ std::vector<Eigen::Vector2i> LayOut(std::span<const LegendEntry> entries, int wi
   return places;
 }
 
+Marker MarkerOf(LegendMark mark) {
+  if (mark == LegendMark::kRing) return Marker::kRing;
+  return mark == LegendMark::kCross ? Marker::kCross : Marker::kDot;
+}
+
 void DrawMark(Image& image, int x, int y, const LegendEntry& entry, Rgb ink, int scale) {
   const int length = kMarkLength * scale;
   const double middle = y + (kCapHeight * scale - 1) / 2.0;
@@ -57,6 +63,12 @@ void DrawMark(Image& image, int x, int y, const LegendEntry& entry, Rgb ink, int
       image.FillRect(left + 1, y + 1, side - 2, side - 2, entry.color);
       break;
     }
+    case LegendMark::kDot:
+    case LegendMark::kRing:
+    case LegendMark::kCross:
+      DrawMarker(image, x + (length - 1) / 2.0, middle, MarkerOf(entry.mark),
+                 kCapHeight * scale / 2.0, entry.color);
+      break;
   }
 }
 

@@ -9,8 +9,9 @@
 namespace evoslam {
 
 // How an entry shows what it names: a stroke of a line, a stroke with a dot at each end (a link
-// between two places), or a filled square (an area's colour, outlined so that white shows).
-enum class LegendMark { kLine, kLink, kSwatch };
+// between two places), a filled square (an area's colour, outlined so that white shows), or one
+// of a plot's markers (marker.h) as tall as the label's capitals.
+enum class LegendMark { kLine, kLink, kSwatch, kDot, kRing, kCross };
 
 struct LegendEntry {
   std::string label;

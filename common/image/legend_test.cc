@@ -50,6 +50,17 @@ TEST(LegendTest, EntriesThatDoNotFitStartANewRow) {
   }
 }
 
+TEST(LegendTest, MarkerEntriesShowTheirMarker) {
+  const std::vector<LegendEntry> entries = {{"members", kLegendGreen, LegendMark::kDot},
+                                            {"chosen", kLegendInk, LegendMark::kRing},
+                                            {"start", kLegendRed, LegendMark::kCross}};
+  Image image(600, LegendHeight(entries, 600, 2) + 20);
+  DrawLegend(image, 10, 10, 580, entries, kLegendInk, 2);
+  for (const LegendEntry& e : entries) EXPECT_TRUE(FindText(image, e.label, kLegendInk, 2));
+  EXPECT_GT(CountPixels(image, kLegendGreen), 100) << "a dot as tall as the capitals";
+  EXPECT_GT(CountPixels(image, kLegendRed), 20);
+}
+
 TEST(LegendTest, NoEntriesTakeNoRoom) { EXPECT_EQ(LegendHeight({}, 500, 2), 0); }
 
 }  // namespace

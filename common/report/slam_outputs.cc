@@ -5,6 +5,9 @@
 #include "common/grid/map_io.h"
 #include "common/io/file_bytes.h"
 #include "common/io/trajectory_io.h"
+#include "common/report/pareto_csv.h"
+#include "common/report/pareto_fronts.h"
+#include "common/report/pareto_picture.h"
 #include "common/report/result_files.h"
 #include "common/report/run_pictures.h"
 #include "common/report/slam_report.h"
@@ -26,6 +29,7 @@ void CheckResult(const SlamResult& result) {
                   " poses");
     }
   }
+  if (!result.pareto_fronts.empty()) CheckParetoFronts(result.pareto_fronts);
 }
 
 }  // namespace
@@ -49,13 +53,21 @@ std::vector<proto::ResultFile> SlamOutputs(const Dataset& dataset, const proto::
   }
   report.set_map_resolution_m(result.map.resolution());
   WriteMapYaml(result.map, dir / "map.yaml");
-  outputs.insert(outputs.end(), {"map.yaml", "map.pgm", "map.png", "map_trajectory.png",
-                                 "report.json", "summary.txt"});
+  outputs.insert(outputs.end(), {"map.yaml", "map.pgm", "map.png", "map_trajectory.png"});
+  const std::span<const ParetoFront> fronts = result.pareto_fronts;
+  if (!fronts.empty()) {
+    WriteFileBytes(dir / "pareto.csv", ParetoCsv(fronts));
+    outputs.insert(outputs.end(), {"pareto.csv", "pareto.png"});
+  }
+  outputs.insert(outputs.end(), {"report.json", "summary.txt"});
   for (const std::string& o : outputs) report.add_outputs(o);
   WriteJson(report, dir / "report.json");
   WriteFileBytes(dir / "summary.txt", FormatSlamSummary(report));
-  // Drawn from the files, as `evoslam plot` draws them.
-  WriteRunPictures(ReadRun(dir.path()), dir.path());
+  // The map pictures drawn from the files, as `evoslam plot` draws them; the fronts under the
+  // same title.
+  const RunRecord run = ReadRun(dir.path());
+  WriteRunPictures(run, dir.path());
+  if (!fronts.empty()) WriteParetoPicture(fronts, run.title, dir / "pareto.png");
   return ReadResultFiles(dir.path(), outputs);
 }
 

@@ -20,11 +20,14 @@ namespace evoslam {
 //   map.yaml, map.pgm, map.png      the result's map, for map_server and as a picture;
 //   map_trajectory.png              the map with the estimate, odometry, ground truth and each
 //                                   loop closure as a line between its two poses;
+//   pareto.csv, pareto.png          when the result has Pareto fronts: their members, and their
+//                                   picture (pareto_csv.h, pareto_picture.h);
 //   report.json, summary.txt        MakeSlamReport with the outputs listed, and its summary.
-// The pictures are drawn from the other files (run_pictures.h), as `evoslam plot` draws them.
-// The result covers the log's first result.trajectory.size() scans. The same result gives the
-// same bytes. Throws Error for a result with no poses, more poses than scans, or a loop whose
-// scans lie beyond its poses.
+// The map pictures are drawn from the other files (run_pictures.h), as `evoslam plot` draws them;
+// the Pareto picture from the result's fronts, under the map pictures' title. The result covers
+// the log's first result.trajectory.size() scans. The same result gives the same bytes. Throws
+// Error for a result with no poses, more poses than scans, a loop whose scans lie beyond its
+// poses, or fronts that CheckParetoFronts refuses.
 std::vector<proto::ResultFile> SlamOutputs(const Dataset& dataset, const proto::SlamParams& params,
                                            const SlamResult& result,
                                            const std::optional<NamedRelations>& relations,

@@ -16,6 +16,8 @@
 #include "common/image/image.h"
 #include "common/io/trajectory_io.h"
 #include "common/report/map_picture.h"
+#include "common/report/pareto_csv.h"
+#include "common/report/pareto_testing.h"
 #include "common/report/run_pictures.h"
 #include "common/report/slam_report.h"
 #include "common/sim/simulator.h"
@@ -133,6 +135,46 @@ TEST_F(SlamOutputsTest, HandsBackTheFilesItsReportLists) {
   Write(files);
   const proto::SlamReport report = ReadReport();
   EXPECT_EQ(std::vector<std::string>(report.outputs().begin(), report.outputs().end()), expected);
+}
+
+TEST_F(SlamOutputsTest, WithoutParetoFrontsThereAreNoParetoFiles) {
+  ASSERT_TRUE(result_.pareto_fronts.empty());
+  for (const auto& f : SlamOutputs(log_, Params(), result_, std::nullopt, 2)) {
+    EXPECT_EQ(f.name().find("pareto"), std::string::npos) << f.name();
+  }
+}
+
+TEST_F(SlamOutputsTest, ParetoFrontsAreWrittenAndListedAfterTheMapPictures) {
+  SlamResult result = result_;
+  result.pareto_fronts = testing::TwoWindowFronts();
+  const auto files = SlamOutputs(log_, Params(), result, std::nullopt, 2);
+  std::vector<std::string> names;
+  for (const auto& f : files) names.push_back(f.name());
+  const std::vector<std::string> expected = {"trajectory.txt", "trajectory.tum",     "odometry.txt",
+                                             "truth.txt",      "map.yaml",           "map.pgm",
+                                             "map.png",        "map_trajectory.png", "pareto.csv",
+                                             "pareto.png",     "report.json",        "summary.txt"};
+  EXPECT_EQ(names, expected);
+  const auto by_name = Write(files);
+  const proto::SlamReport report = ReadReport();
+  EXPECT_EQ(std::vector<std::string>(report.outputs().begin(), report.outputs().end()), expected);
+  EXPECT_EQ(by_name.at("pareto.csv"), ParetoCsv(result.pareto_fronts));
+  const Image picture = ReadPng(dir_ / "pareto.png");
+  EXPECT_GE(picture.width(), 1000);
+  EXPECT_TRUE(FindText(picture, ReadRun(dir_.path()).title, kInkColor, 2)) << "the run's title";
+  EXPECT_TRUE(FindText(picture, "occupied cells, relative to start", kInkColor, 2));
+  const auto again = SlamOutputs(log_, Params(), result, std::nullopt, 2);
+  ASSERT_EQ(again.size(), files.size());
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    EXPECT_EQ(again[i].content(), files[i].content()) << files[i].name();
+  }
+}
+
+TEST_F(SlamOutputsTest, ParetoFrontsThatDoNotFitAreAnError) {
+  SlamResult result = result_;
+  result.pareto_fronts = testing::TwoWindowFronts();
+  result.pareto_fronts[1].chosen = 7;
+  EXPECT_THROW(SlamOutputs(log_, Params(), result, std::nullopt, 1), Error);
 }
 
 // What the pictures draw besides the estimate: the odometry and the truth at each scan.
