@@ -57,37 +57,40 @@ void BM_EvidenceGridWholeLog(benchmark::State& state) {
 }
 BENCHMARK(BM_EvidenceGridWholeLog)->Unit(benchmark::kMillisecond);
 
-// Candidates that move a window of `size` scans (from scan 5,000) of the log: eight draws of each
-// pose moved by up to 10 cm and 2 degrees.
-std::vector<std::vector<PlacedScan>> WindowCandidates(std::span<const PlacedScan> window) {
+// The base grid of the whole log, a window of scans of it (from scan 5,000) and eight candidates
+// moving it: each pose moved by up to 10 cm and 2 degrees.
+struct WindowMoves {
+  EvidenceGrid base;
+  std::span<const PlacedScan> window;
   std::vector<std::vector<PlacedScan>> candidates;
-  Rng rng(4);
-  for (int c = 0; c < 8; ++c) {
-    std::vector<PlacedScan>& moved = candidates.emplace_back(window.begin(), window.end());
-    for (PlacedScan& p : moved) {
-      p.pose = Pose2(p.pose.x() + rng.Uniform(-0.1, 0.1), p.pose.y() + rng.Uniform(-0.1, 0.1),
-                     p.pose.theta() + rng.Uniform(-0.035, 0.035));
+
+  WindowMoves(const IntelEvidence& intel, std::size_t size)
+      : base(intel.geometry, intel.params),
+        window(std::span<const PlacedScan>(intel.placed).subspan(5000, size)) {
+    base.Add(intel.placed);
+    Rng rng(4);
+    for (int c = 0; c < 8; ++c) {
+      std::vector<PlacedScan>& moved = candidates.emplace_back(window.begin(), window.end());
+      for (PlacedScan& p : moved) {
+        p.pose = Pose2(p.pose.x() + rng.Uniform(-0.1, 0.1), p.pose.y() + rng.Uniform(-0.1, 0.1),
+                       p.pose.theta() + rng.Uniform(-0.035, 0.035));
+      }
     }
   }
-  return candidates;
-}
+};
 
-// One candidate scored against the base grid of the whole log: the window of state.range(0) scans
-// taken out at its poses in the base and put in at the candidate's (Score traces both).
+// One candidate scored against the base: the window of state.range(0) scans taken out at its
+// poses in the base and put in at the candidate's (Score traces both).
 void BM_EvidenceOverlayWindow(benchmark::State& state) {
   const IntelEvidence* intel = IntelEvidenceOrSkip(state);
   if (!intel) return;
-  EvidenceGrid base(intel->geometry, intel->params);
-  base.Add(intel->placed);
-  const auto window = std::span<const PlacedScan>(intel->placed)
-                          .subspan(5000, static_cast<std::size_t>(state.range(0)));
-  const auto candidates = WindowCandidates(window);
-  EvidenceOverlay overlay(base);
+  const WindowMoves moves(*intel, static_cast<std::size_t>(state.range(0)));
+  EvidenceOverlay overlay(moves.base);
   std::size_t i = 0;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(overlay.Score(window, candidates[i++ & 7]));
+    benchmark::DoNotOptimize(overlay.Score(moves.window, moves.candidates[i++ & 7]));
   }
-  state.counters["scans"] = static_cast<double>(window.size());
+  state.counters["scans"] = static_cast<double>(moves.window.size());
 }
 BENCHMARK(BM_EvidenceOverlayWindow)->Arg(100)->Unit(benchmark::kMillisecond);
 
@@ -96,18 +99,14 @@ BENCHMARK(BM_EvidenceOverlayWindow)->Arg(100)->Unit(benchmark::kMillisecond);
 void BM_EvidenceOverlayWindowAdded(benchmark::State& state) {
   const IntelEvidence* intel = IntelEvidenceOrSkip(state);
   if (!intel) return;
-  EvidenceGrid base(intel->geometry, intel->params);
-  base.Add(intel->placed);
-  const auto window = std::span<const PlacedScan>(intel->placed)
-                          .subspan(5000, static_cast<std::size_t>(state.range(0)));
-  const auto candidates = WindowCandidates(window);
-  EvidenceOverlay overlay(base);
-  overlay.SetRemoved(window);
+  const WindowMoves moves(*intel, static_cast<std::size_t>(state.range(0)));
+  EvidenceOverlay overlay(moves.base);
+  overlay.SetRemoved(moves.window);
   std::size_t i = 0;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(overlay.ScoreAdded(candidates[i++ & 7]));
+    benchmark::DoNotOptimize(overlay.ScoreAdded(moves.candidates[i++ & 7]));
   }
-  state.counters["scans"] = static_cast<double>(window.size());
+  state.counters["scans"] = static_cast<double>(moves.window.size());
 }
 BENCHMARK(BM_EvidenceOverlayWindowAdded)->Arg(100)->Unit(benchmark::kMillisecond);
 

@@ -30,7 +30,7 @@ namespace evoslam {
 void ValidateEvidenceGridParams(const proto::EvidenceGridParams& params);
 
 // The unit of the evidence sums, nats: fine enough that the weakest default reading (3 m away:
-// 0.025 nats, 104 units) is rounded by under 0.5 %, coarse enough that a cell's 32-bit sums take
+// 0.025 nats, 103 units) is rounded by under 0.5 %, coarse enough that a cell's 32-bit sums take
 // 1.5 million full-strength default readings (0.69 nats each) before they wrap. They wrap modulo
 // 2^32, which keeps adding and taking back exact; only a cell read that often would be misjudged.
 inline constexpr double kEvidenceUnit = 1.0 / 4096;
