@@ -6,8 +6,8 @@
 
 namespace evoslam {
 
-CorrectionGenes::CorrectionGenes(const proto::TrajectorySegmentParams& params,
-                                 std::size_t segments, std::size_t key_points)
+CorrectionGenes::CorrectionGenes(const proto::TrajectorySegmentParams& params, std::size_t segments,
+                                 std::size_t key_points)
     : segments_(segments),
       key_points_(key_points),
       encoding_(params.encoding() == "integer" ? Encoding::kInteger : Encoding::kReal),

@@ -114,7 +114,7 @@ void EvidenceGrid::Recount() {
 }
 
 GridGeometry EvidenceGeometryFor(std::span<const PlacedScan> scans,
-                                 const proto::EvidenceGridParams& params) {
+                                 const proto::EvidenceGridParams& params, double margin_m) {
   ValidateEvidenceGridParams(params);
   if (scans.empty()) throw Error("evidence grid: no scans to size a grid for");
   Eigen::Vector2d lo = scans.front().pose.translation();
@@ -127,7 +127,7 @@ GridGeometry EvidenceGeometryFor(std::span<const PlacedScan> scans,
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
-  const double reach = params.max_range_m() + kEvidenceGeometryMargin;
+  const double reach = params.max_range_m() + margin_m;
   const double res = params.cell_size_m();
   const Eigen::Vector2d origin = lo.array() - reach;
   // One cell more than the extent needs, so that a point exactly on the far edge is inside; in
@@ -139,22 +139,6 @@ GridGeometry EvidenceGeometryFor(std::span<const PlacedScan> scans,
                 std::to_string(EvidenceGrid::kMaxCells) + " cells of evidence.cell_size_m");
   }
   return GridGeometry(res, origin, static_cast<int>(cells.x()), static_cast<int>(cells.y()));
-}
-
-OccupancyGrid ToOccupancyGrid(const EvidenceGrid& grid) {
-  const GridGeometry& g = grid.geometry();
-  OccupancyGrid map(g.resolution(), g.origin(), g.width(), g.height());
-  for (int y = 0; y < g.height(); ++y) {
-    for (int x = 0; x < g.width(); ++x) {
-      const CellScore score = grid.score(g.Index(x, y));
-      if (score.occupied) {
-        map.SetCell(x, y, CellState::kOccupied);
-      } else if (score.empty) {
-        map.SetCell(x, y, CellState::kFree);
-      }
-    }
-  }
-  return map;
 }
 
 }  // namespace evoslam

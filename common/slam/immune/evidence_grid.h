@@ -17,7 +17,7 @@ namespace evoslam {
 // Paper 004's objectives of a map (§2, eqs. 1-3), all minimised. See evidence_model.h for how they
 // are read.
 struct EvidenceObjectives {
-  double consistency = 0;     // f1: the doubt min(1 - occ, 1 - emp) summed over cells with evidence
+  double consistency = 0;     // f1: the contradiction min(occ, emp) summed over the cells
   std::int64_t occupied = 0;  // f2: cells with occ > count_above
   std::int64_t empty = 0;     // f3: cells with emp > count_above
   bool operator==(const EvidenceObjectives&) const = default;
@@ -101,16 +101,13 @@ class EvidenceGrid {
 };
 
 // The geometry of a grid that holds every scan at these poses: the laser positions grown by
-// max_range_m and by kEvidenceGeometryMargin (room for poses a search moves), in cells of
-// cell_size_m. Throws evoslam::Error for no scans, a pose that is not finite, invalid params or
-// more than EvidenceGrid::kMaxCells cells.
+// max_range_m and by `margin_m` (room for poses a search moves), in cells of cell_size_m. Throws
+// evoslam::Error for no scans, a pose that is not finite, invalid params or more than
+// EvidenceGrid::kMaxCells cells.
 inline constexpr double kEvidenceGeometryMargin = 1.0;
 GridGeometry EvidenceGeometryFor(std::span<const PlacedScan> scans,
-                                 const proto::EvidenceGridParams& params);
-
-// The grid as a map picture: occupied where occ > count_above, else free where emp >
-// count_above, else unknown (SetCell's fewest counts for each). Without its distance field.
-OccupancyGrid ToOccupancyGrid(const EvidenceGrid& grid);
+                                 const proto::EvidenceGridParams& params,
+                                 double margin_m = kEvidenceGeometryMargin);
 
 }  // namespace evoslam
 

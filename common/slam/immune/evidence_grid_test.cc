@@ -229,29 +229,6 @@ TEST(EvidenceGridTest, GeometryForHoldsEveryScan) {
   EXPECT_THROW(EvidenceGeometryFor(bad, params), Error);
 }
 
-TEST(EvidenceGridTest, OccupancyPictureFollowsTheCounts) {
-  const proto::EvidenceGridParams params;
-  const PreparedScans prepared(SimulatedRoomScans(), params);
-  EvidenceGrid grid(EvidenceRoomGeometry(6, 4), params);
-  grid.Add(prepared.placed);
-  const OccupancyGrid map = ToOccupancyGrid(grid);
-  std::int64_t occupied = 0, free = 0, unknown = 0;
-  for (int y = 0; y < map.height(); ++y) {
-    for (int x = 0; x < map.width(); ++x) {
-      const CellState s = map.state(x, y);
-      occupied += s == CellState::kOccupied;
-      free += s == CellState::kFree;
-      unknown += s == CellState::kUnknown;
-    }
-  }
-  EXPECT_EQ(occupied, grid.objectives().occupied);
-  EXPECT_EQ(free, grid.objectives().empty);
-  EXPECT_GT(unknown, 0);
-  EXPECT_EQ(map.state(static_cast<int>(map.geometry().CellX(3.0)),
-                      static_cast<int>(map.geometry().CellY(0.0))),
-            CellState::kOccupied);
-}
-
 TEST(EvidenceGridTest, RejectsGeometryOfNoOrTooManyCells) {
   const proto::EvidenceGridParams params;
   EXPECT_THROW(EvidenceGrid(GridGeometry(), params), Error);

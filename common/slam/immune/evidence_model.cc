@@ -44,12 +44,10 @@ const DecayTable kEvidenceDecay;
 // The beliefs of a cell in a form safe at every limit. With hi >= lo the two sums, u = e^-hi,
 // v = e^-lo and p = e^-(hi - lo) = u / v, dividing Dempster's rule through by v gives
 //   belief(hi side) = (1 - u) / (1 + p - u),   belief(lo side) = (1 - v) p / (1 + p - u),
-//   min(1 - occ, 1 - emp) = p / (1 + p - u),
 // whose denominator lies in [1, 2] unless hi = lo = 0: no overflow, no 0 / 0 as both sums grow.
 struct DempsterTerms {
   double hi_belief;
-  double lo_belief;
-  double doubt;
+  double lo_belief;  // min(occ, emp): the cell's contradiction
 };
 
 DempsterTerms Combine(std::uint32_t hi, std::uint32_t lo) {
@@ -57,7 +55,7 @@ DempsterTerms Combine(std::uint32_t hi, std::uint32_t lo) {
   const double u = kEvidenceDecay(hi);
   const double v = kEvidenceDecay(lo);
   const double inverse = 1.0 / (1.0 + p - u);
-  return {(1.0 - u) * inverse, (1.0 - v) * p * inverse, p * inverse};
+  return {(1.0 - u) * inverse, (1.0 - v) * p * inverse};
 }
 
 }  // namespace
@@ -105,7 +103,7 @@ CellScore EvidenceScorer::Score(std::uint32_t occupied_units, std::uint32_t empt
       occupied_more ? Combine(occupied_units, empty_units) : Combine(empty_units, occupied_units);
   const double occupied = occupied_more ? t.hi_belief : t.lo_belief;
   const double empty = occupied_more ? t.lo_belief : t.hi_belief;
-  return {static_cast<std::int64_t>(t.doubt / kConsistencyUnit + 0.5), occupied > count_above_,
+  return {static_cast<std::int64_t>(t.lo_belief / kConsistencyUnit + 0.5), occupied > count_above_,
           empty > count_above_};
 }
 

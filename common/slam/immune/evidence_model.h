@@ -13,6 +13,14 @@
 // (conflict K = occ' emp') then gives occ = occ'(1 - emp') / (1 - K), emp = emp'(1 - occ') / (1 -
 // K).
 //
+// Eq. 1, f1 = sum min(1 - occ, 1 - emp), is read with occ and emp as the cell's plausibilities,
+// the belief not committed against each hypothesis (Pl(occ) = 1 - emp, Pl(emp) = 1 - occ), so that
+// each cell adds min(occ, emp): nothing where its readings agree, most where they contradict each
+// other. Read with beliefs, eq. 1 sums what the readings leave unsure, which falls wherever more
+// readings pile into fewer cells: on a simulated office that f1 ranks the truth worst, odometry
+// better and a trajectory collapsed onto itself best, and every search we ran on it collapsed the
+// map (docs/methods/immune.md). Read with plausibilities it ranks them the other way round.
+//
 // Exactness: each reading's -log(1 - s) is rounded to a whole number of kEvidenceUnit, and the sums
 // are integers, so that adding and taking back a scan are exact inverses and a cell's state does
 // not hang on the order its readings came in. Everything a cell adds to the objectives is a
@@ -35,7 +43,7 @@ void ValidateEvidenceGridParams(const proto::EvidenceGridParams& params);
 // 2^32, which keeps adding and taking back exact; only a cell read that often would be misjudged.
 inline constexpr double kEvidenceUnit = 1.0 / 4096;
 
-// f1 is counted in these: 2^-32 of a cell's full doubt, so that 2^28 cells fit in 64 bits.
+// f1 is counted in these: 2^-32 of a cell's whole contradiction, so that 2^28 cells fit in 64 bits.
 inline constexpr double kConsistencyUnit = 1.0 / 4294967296.0;
 
 // -log(1 - s) of one reading of mass s, in whole kEvidenceUnit, at least one, so that a cell
@@ -51,10 +59,8 @@ struct CellBeliefs {
   double empty = 0;
 };
 
-// What one cell adds to the objectives: its doubt min(1 - occ, 1 - emp) in kConsistencyUnit
-// (0 for a cell without evidence: f1 sums the doubt left in what the scans saw, not the 1 that
-// eq. 1 would add for every cell no scan reached), and whether it counts as occupied (f2) or
-// empty (f3).
+// What one cell adds to the objectives: its contradiction min(occ, emp) in kConsistencyUnit (0
+// for a cell without evidence), and whether it counts as occupied (f2) or empty (f3).
 struct CellScore {
   std::int64_t consistency = 0;
   bool occupied = false;

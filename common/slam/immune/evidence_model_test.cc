@@ -33,8 +33,9 @@ TEST(EvidenceModelTest, BeliefsFollowDempstersRule) {
     EXPECT_NEAR(got.occupied, want.occupied, 1e-12) << a << " " << b;
     EXPECT_NEAR(got.empty, want.empty, 1e-12) << a << " " << b;
     if ((a | b) == 0) continue;
-    const double doubt = std::min(1 - want.occupied, 1 - want.empty);
-    EXPECT_NEAR(scorer.Score(a, b).consistency * kConsistencyUnit, doubt, 1e-9) << a << " " << b;
+    const double contradiction = std::min(want.occupied, want.empty);
+    EXPECT_NEAR(scorer.Score(a, b).consistency * kConsistencyUnit, contradiction, 1e-9)
+        << a << " " << b;
   }
 }
 
@@ -48,7 +49,7 @@ TEST(EvidenceModelTest, CellWithoutEvidenceScoresNothing) {
 TEST(EvidenceModelTest, HugeSumsStayFinite) {
   const EvidenceScorer scorer(0.5);
   const std::uint32_t most = std::numeric_limits<std::uint32_t>::max();
-  // Both certain: the conflict splits the belief evenly and leaves half the doubt.
+  // Both certain: the conflict splits the belief evenly, each side half.
   const CellBeliefs even = scorer.Beliefs(most, most);
   EXPECT_DOUBLE_EQ(even.occupied, 0.5);
   EXPECT_DOUBLE_EQ(even.empty, 0.5);

@@ -29,12 +29,12 @@ std::vector<ParetoFront> Fronts(const proto::ImmuneRunReport& report,
   std::vector<ParetoFront> fronts;
   for (int w = 0; w < report.windows_size(); ++w) {
     const proto::ImmuneWindowRecord& r = report.windows(w);
-    ParetoFront front{.label = fmt::format("window {}: scans {}-{}", w + 1, r.first_scan(),
-                                           r.last_scan()),
-                      .objectives = names,
-                      .f = Eigen::MatrixXd(rows, r.front_size() / rows),
-                      .start = {r.start_objectives().begin(), r.start_objectives().end()},
-                      .chosen = r.chosen()};
+    ParetoFront front{
+        .label = fmt::format("window {}: scans {}-{}", w + 1, r.first_scan(), r.last_scan()),
+        .objectives = names,
+        .f = Eigen::MatrixXd(rows, r.front_size() / rows),
+        .start = {r.start_objectives().begin(), r.start_objectives().end()},
+        .chosen = r.chosen()};
     for (int i = 0; i < r.front_size(); ++i) front.f(i % rows, i / rows) = r.front(i);
     fronts.push_back(std::move(front));
   }
@@ -51,8 +51,7 @@ std::size_t ImmuneMethod::Islands(const proto::SlamParams&) const { return 1; }
 
 void ImmuneMethod::SetIslands(proto::SlamParams&, std::uint32_t) const {}
 
-MemoryNeed ImmuneMethod::PeakMemory(const Dataset& dataset,
-                                    const proto::SlamParams& params) const {
+MemoryNeed ImmuneMethod::PeakMemory(const Dataset& dataset, const proto::SlamParams& params) const {
   const proto::EvidenceGridParams& e = params.immune().evidence();
   const std::size_t n = ScansToMap(dataset, params);
   Eigen::Vector2d low = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
@@ -65,10 +64,9 @@ MemoryNeed ImmuneMethod::PeakMemory(const Dataset& dataset,
   }
   if (n == 0) low = high = Eigen::Vector2d::Zero();
   // The grid covers the path widened by the range cut, with room for the corrections.
-  const Eigen::Vector2d extent =
-      (high - low).array() + 2.0 * (e.max_range_m() + 5.0);
-  const double cells = std::ceil(extent.x() / e.cell_size_m()) *
-                       std::ceil(extent.y() / e.cell_size_m());
+  const Eigen::Vector2d extent = (high - low).array() + 2.0 * (e.max_range_m() + 5.0);
+  const double cells =
+      std::ceil(extent.x() / e.cell_size_m()) * std::ceil(extent.y() / e.cell_size_m());
   // Per cell: the map, the empty base of immune selection's local grids, and an overlay's scratch
   // per thread; per beam: its prepared end point and samples.
   constexpr double kBytesPerCell = 48.0;
@@ -102,15 +100,22 @@ SlamResult ImmuneMethod::Run(const Dataset& dataset, const proto::SlamParams& pa
     };
   }
   ImmuneSlamResult run = RunImmuneSlam(dataset, initial, params.immune(), params.seed(), runtime);
-  SlamResult result;
-  result.trajectory.reserve(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    result.trajectory.push_back({dataset.scans[k].timestamp, run.poses[k]});
-  }
-  result.map = ToOccupancyGrid(run.map);
-  result.seconds = run.seconds;
-  result.evaluations = run.evaluations;
-  result.pareto_fronts = Fronts(run.report, params.immune());
+  std::vector<StampedPose> trajectory;
+  trajectory.reserve(n);
+  for (std::size_t k = 0; k < n; ++k)
+    trajectory.push_back({dataset.scans[k].timestamp, run.poses[k]});
+  // The map drawn as every method's is, from the scans at the poses: the evidence grid's own
+  // classes mark every cell a return reached as occupied (immune.evidence.count_above).
+  OccupancyGrid map =
+      OccupancyGridAtPoses(dataset, trajectory, params.immune().evidence().cell_size_m());
+  SlamResult result{.trajectory = std::move(trajectory),
+                    .map = std::move(map),
+                    .loops = {},
+                    .odometry_stalls = {},
+                    .seconds = run.seconds,
+                    .evaluations = run.evaluations,
+                    .method_report = {},
+                    .pareto_fronts = Fronts(run.report, params.immune())};
   *result.method_report.mutable_immune() = std::move(run.report);
   return result;
 }
@@ -128,8 +133,7 @@ std::vector<SlamFlag> ImmuneMethod::Flags() const {
        ""},
       {"--window-segments", "immune.search.window_segments",
        "immune method: segments optimised at once (0: the whole trajectory)", ""},
-      {"--population", "immune.search.population", "immune method: candidates per generation",
-       ""},
+      {"--population", "immune.search.population", "immune method: candidates per generation", ""},
       {"--max-generations", "immune.search.generations",
        "immune method: generations of each window's search at most", ""},
       {"--encoding", "immune.segments.encoding",

@@ -1,5 +1,7 @@
 #include "common/slam/immune/immune_slam.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -19,8 +21,7 @@ namespace {
 
 void RequireProbability(double p, const char* field) {
   if (!(p >= 0.0 && p <= 1.0)) {
-    throw Error(std::string("immune.search.") + field + " must be in [0, 1], not " +
-                std::to_string(p));
+    throw Error(fmt::format("immune.search.{} must be in [0, 1], not {}", field, p));
   }
 }
 
@@ -65,18 +66,22 @@ Population FinalCandidates(const Archipelago& islands) {
   return all;
 }
 
-// The member of the first front with the lowest first objective (f1, or Duckett's sum); ties go
-// to the lower later objectives, then to the lower index.
-std::size_t ChosenMember(const Eigen::MatrixXd& f) {
+// The member of the front applied: the lowest weighted sum f1 + w2 f2 + w3 f3 (Duckett's fitness,
+// which one-objective fronts already hold), the first on ties. The search needs no weights; one
+// member must still be chosen, and f1 alone picks the member that spreads the scans farthest apart,
+// where the fewest readings can contradict each other (docs/methods/immune.md).
+double WeightedSum(const Eigen::Ref<const Eigen::VectorXd>& f,
+                   const proto::ImmuneSearchParams& search) {
+  if (f.size() == 1) return f[0];
+  return f[0] + search.occupied_weight() * f[1] + search.empty_weight() * f[2];
+}
+
+std::size_t ChosenMember(const Eigen::MatrixXd& f, const proto::ImmuneSearchParams& search) {
   std::size_t best = 0;
   for (Eigen::Index i = 1; i < f.cols(); ++i) {
-    const auto b = static_cast<Eigen::Index>(best);
-    for (Eigen::Index r = 0; r < f.rows(); ++r) {
-      if (f(r, i) < f(r, b)) {
-        best = static_cast<std::size_t>(i);
-        break;
-      }
-      if (f(r, i) > f(r, b)) break;
+    if (WeightedSum(f.col(i), search) <
+        WeightedSum(f.col(static_cast<Eigen::Index>(best)), search)) {
+      best = static_cast<std::size_t>(i);
     }
   }
   return best;
@@ -168,10 +173,10 @@ ImmuneSlamResult RunImmuneSlam(const Dataset& dataset, std::span<const Pose2> in
   double travelled = 0.0;
   for (const TrajectorySegment& s : segments) travelled += s.length;
   if (segments.empty() || travelled < params.segments().length_m()) {
-    throw Error(dataset.source + ": the trajectory of its " + std::to_string(n) +
-                " scans travels " + std::to_string(travelled) +
-                " m, less than one segment of immune.segments.length_m = " +
-                std::to_string(params.segments().length_m()) + " m");
+    throw Error(
+        fmt::format("{}: the trajectory of its {} scans travels {:.2f} m, less than one segment "
+                    "(immune.segments.length_m = {} m)",
+                    dataset.source, n, travelled, params.segments().length_m()));
   }
 
   std::vector<EvidenceScan> scans;
@@ -179,10 +184,13 @@ ImmuneSlamResult RunImmuneSlam(const Dataset& dataset, std::span<const Pose2> in
   for (std::size_t k = 0; k < n; ++k) scans.emplace_back(dataset.scans[k], params.evidence());
   std::vector<PlacedScan> at_initial;
   for (std::size_t k = 0; k < n; ++k) at_initial.push_back({&scans[k], initial[k]});
-  const GridGeometry geometry = EvidenceGeometryFor(at_initial, params.evidence());
+  const GridGeometry geometry = EvidenceGeometryFor(at_initial, params.evidence(), 30.0);
 
-  ImmuneSlamResult result{.poses = {}, .map = EvidenceGrid(geometry, params.evidence()),
-                          .report = {}, .evaluations = 0, .seconds = 0.0};
+  ImmuneSlamResult result{.poses = {},
+                          .map = EvidenceGrid(geometry, params.evidence()),
+                          .report = {},
+                          .evaluations = 0,
+                          .seconds = 0.0};
   proto::ImmuneRunReport& report = result.report;
   report.set_segments(static_cast<std::uint32_t>(segments.size()));
   report.set_key_points(static_cast<std::uint32_t>(key_points.size()));
@@ -201,8 +209,8 @@ ImmuneSlamResult RunImmuneSlam(const Dataset& dataset, std::span<const Pose2> in
   if (runtime.resume != nullptr) {
     const proto::ImmuneCheckpoint& c = *runtime.resume;
     if (c.windows_done() > windows || c.length_size() != c.turn_size() ||
-        static_cast<std::size_t>(c.length_size()) != std::min(segments.size(),
-                                                               c.windows_done() * per_window)) {
+        static_cast<std::size_t>(c.length_size()) !=
+            std::min(segments.size(), c.windows_done() * per_window)) {
       throw Error("the job's immune checkpoint does not fit its log and parameters");
     }
     done = c.windows_done();
@@ -265,9 +273,21 @@ ImmuneSlamResult RunImmuneSlam(const Dataset& dataset, std::span<const Pose2> in
       front_f.col(static_cast<Eigen::Index>(i)) =
           final_candidates.f.col(static_cast<Eigen::Index>(front[i]));
     }
-    const std::size_t chosen = ChosenMember(front_f);
+    const std::size_t chosen = ChosenMember(front_f, params.search());
+    std::vector<double> start_f(problem.objectives());
+    const Eigen::VectorXd none =
+        Eigen::VectorXd::Zero(static_cast<Eigen::Index>(problem.dimension()));
+    problem.Evaluate(none, start_f);
+    // A front that lost every member as good as the window as it stood (crowding can drop one)
+    // leaves the window as it stood.
+    const bool applied =
+        WeightedSum(front_f.col(static_cast<Eigen::Index>(chosen)), params.search()) <=
+        WeightedSum(Eigen::Map<const Eigen::VectorXd>(start_f.data(),
+                                                      static_cast<Eigen::Index>(start_f.size())),
+                    params.search());
     const Eigen::VectorXd best =
-        final_candidates.x.col(static_cast<Eigen::Index>(front[chosen]));
+        applied ? Eigen::VectorXd(final_candidates.x.col(static_cast<Eigen::Index>(front[chosen])))
+                : none;
 
     proto::ImmuneWindowRecord& record = *report.add_windows();
     record.set_first_segment(static_cast<std::uint32_t>(first_segment));
@@ -282,9 +302,6 @@ ImmuneSlamResult RunImmuneSlam(const Dataset& dataset, std::span<const Pose2> in
       record.set_restarts(static_cast<std::uint32_t>(immune->restarts()));
     }
     record.set_stop(std::string(StopReasonName(*stopped)));
-    std::vector<double> start_f(problem.objectives());
-    problem.Evaluate(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(problem.dimension())),
-                     start_f);
     for (double v : start_f) record.add_start_objectives(v);
     for (Eigen::Index r = 0; r < front_f.rows(); ++r) {
       record.add_chosen_objectives(front_f(r, static_cast<Eigen::Index>(chosen)));
@@ -293,6 +310,7 @@ ImmuneSlamResult RunImmuneSlam(const Dataset& dataset, std::span<const Pose2> in
       for (Eigen::Index r = 0; r < front_f.rows(); ++r) record.add_front(front_f(r, i));
     }
     record.set_chosen(static_cast<std::uint32_t>(chosen));
+    record.set_applied(applied);
     record.set_seconds(SecondsSince(window_start));
     result.evaluations += islands.evaluations();
 

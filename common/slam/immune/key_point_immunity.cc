@@ -60,8 +60,7 @@ bool KeyPointImmunity::Vaccinate(Eigen::Ref<Eigen::VectorXd> x, Rng& rng) const 
 }
 
 bool KeyPointImmunity::Accept(const Eigen::Ref<const Eigen::VectorXd>& original,
-                              const Eigen::Ref<const Eigen::VectorXd>& vaccinated,
-                              Rng& rng) const {
+                              const Eigen::Ref<const Eigen::VectorXd>& vaccinated, Rng& rng) const {
   Eigen::Index changed = 0;
   while (changed < original.size() && original[changed] == vaccinated[changed]) ++changed;
   if (changed == original.size()) return true;

@@ -1,5 +1,7 @@
 #include "common/slam/immune/trajectory_segments.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -11,8 +13,7 @@ namespace {
 
 void RequirePositive(double value, const char* field) {
   if (!(value > 0.0) || !std::isfinite(value)) {
-    throw Error(std::string("immune.segments.") + field + " must be positive, not " +
-                std::to_string(value));
+    throw Error(fmt::format("immune.segments.{} must be positive, not {}", field, value));
   }
 }
 
@@ -25,8 +26,8 @@ void ValidateTrajectorySegmentParams(const proto::TrajectorySegmentParams& param
   RequirePositive(params.max_length_correction_m(), "max_length_correction_m");
   RequirePositive(params.max_turn_correction_deg(), "max_turn_correction_deg");
   if (params.max_turn_correction_deg() >= 180.0) {
-    throw Error("immune.segments.max_turn_correction_deg must be below 180, not " +
-                std::to_string(params.max_turn_correction_deg()));
+    throw Error(fmt::format("immune.segments.max_turn_correction_deg must be below 180, not {}",
+                            params.max_turn_correction_deg()));
   }
   if (params.encoding() != "integer" && params.encoding() != "continuous") {
     throw Error("immune.segments.encoding must be integer or continuous, not '" +
@@ -43,17 +44,22 @@ std::vector<TrajectorySegment> CutSegments(std::span<const Pose2> poses,
   if (poses.size() < 2) return segments;
   auto next_fine = fine_scans.begin();
   TrajectorySegment current;
-  bool fine = false;
+  bool fine = false;  // the current segment starts at a fine scan
   for (std::size_t k = 1; k < poses.size(); ++k) {
+    // A fine scan ends the segment before it and starts a short one.
+    const std::size_t from = k - 1;
+    while (next_fine != fine_scans.end() && *next_fine < from) ++next_fine;
+    if (next_fine != fine_scans.end() && *next_fine == from) {
+      if (from > current.first) {
+        segments.push_back(current);
+        current = {.first = from, .last = from};
+      }
+      fine = true;
+    }
     const Pose2 step = poses[k - 1].inverse() * poses[k];
     current.length += step.translation().norm();
     current.turn += step.theta();
     current.last = k;
-    // A fine scan anywhere in [first, k] makes this a fine segment.
-    while (next_fine != fine_scans.end() && *next_fine <= k) {
-      if (*next_fine >= current.first) fine = true;
-      ++next_fine;
-    }
     const double limit = fine ? params.key_point_length_m() : params.length_m();
     if (current.length >= limit || std::abs(current.turn) >= params.max_turn_rad()) {
       segments.push_back(current);
@@ -69,7 +75,8 @@ SegmentedTrajectory::SegmentedTrajectory(std::span<const Pose2> poses,
                                          std::vector<TrajectorySegment> segments)
     : start_(poses.empty() ? Pose2() : poses.front()), segments_(std::move(segments)) {
   steps_.reserve(poses.size() > 0 ? poses.size() - 1 : 0);
-  for (std::size_t k = 1; k < poses.size(); ++k) steps_.push_back(poses[k - 1].inverse() * poses[k]);
+  for (std::size_t k = 1; k < poses.size(); ++k)
+    steps_.push_back(poses[k - 1].inverse() * poses[k]);
   turn_share_.assign(steps_.size(), 0.0);
   std::size_t expected_first = 0;
   for (const TrajectorySegment& s : segments_) {
@@ -105,8 +112,8 @@ void SegmentedTrajectory::Poses(std::size_t first, std::span<const SegmentCorrec
     const double scale = s.length > 0.0 ? (s.length + corrections[j].length) / s.length : 1.0;
     for (std::size_t k = s.first; k < s.last; ++k) {
       const Pose2& step = steps_[k];
-      pose = pose * Pose2(step.translation() * scale,
-                          step.theta() + corrections[j].turn * turn_share_[k]);
+      pose = pose *
+             Pose2(step.translation() * scale, step.theta() + corrections[j].turn * turn_share_[k]);
       out[k + 1 - first_scan] = pose;
     }
   }

@@ -29,9 +29,10 @@ struct SegmentCorrection {
 void ValidateTrajectorySegmentParams(const proto::TrajectorySegmentParams& params);
 
 // Cuts the trajectory through `poses` (one per scan) into segments: each ends once it has travelled
-// length_m or turned max_turn_rad, whichever comes first, and segments that hold a scan of
-// `fine_scans` (sorted; the scans that sight a key point) end after key_point_length_m instead.
-// Every segment spans at least one step; the last may be shorter. Fewer than two poses: none.
+// length_m or turned max_turn_rad, whichever comes first. A scan of `fine_scans` (sorted; scans
+// that sight a key point) ends the segment before it and starts one that ends after
+// key_point_length_m. Every segment spans at least one step; the last may be shorter. Fewer than
+// two poses: none.
 std::vector<TrajectorySegment> CutSegments(std::span<const Pose2> poses,
                                            std::span<const std::size_t> fine_scans,
                                            const proto::TrajectorySegmentParams& params);

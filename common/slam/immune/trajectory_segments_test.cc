@@ -50,9 +50,8 @@ TEST(TrajectorySegmentsTest, SegmentsAroundAKeyPointSightingAreShort) {
   const std::vector<Pose2> poses = Drive(101, 0.05);  // 5 m
   const std::vector<std::size_t> fine = {50};
   const auto segments = CutSegments(poses, fine, Params());
-  const auto holding = std::find_if(segments.begin(), segments.end(), [](const auto& s) {
-    return s.first <= 50 && 50 < s.last;
-  });
+  const auto holding = std::find_if(segments.begin(), segments.end(),
+                                    [](const auto& s) { return s.first <= 50 && 50 < s.last; });
   ASSERT_NE(holding, segments.end());
   EXPECT_NEAR(holding->length, 0.2, 0.05 + 1e-9);
   // Without the sighting, that stretch is one long segment.

@@ -27,8 +27,7 @@ TrajectoryWindowProblem::TrajectoryWindowProblem(TrajectoryWindow window,
   const auto& segments = window_.trajectory->segments();
   if (window_.segments == 0 || window_.first_segment + window_.segments > segments.size()) {
     throw Error("a window of " + std::to_string(window_.segments) + " segments from segment " +
-                std::to_string(window_.first_segment) + " of " +
-                std::to_string(segments.size()));
+                std::to_string(window_.first_segment) + " of " + std::to_string(segments.size()));
   }
   if (window_.scans.size() != window_.trajectory->scans()) {
     throw Error("a window's problem needs one prepared scan per scan of the trajectory");

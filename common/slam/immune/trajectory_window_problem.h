@@ -10,6 +10,7 @@
 #include "common/optim/problem.h"
 #include "common/slam/immune/correction_genes.h"
 #include "common/slam/immune/evidence_grid.h"
+#include "common/slam/immune/evidence_overlay.h"
 #include "common/slam/immune/key_points.h"
 #include "common/slam/immune/trajectory_segments.h"
 #include "common/transform/pose2.h"
@@ -43,10 +44,10 @@ struct TrajectoryWindow {
 };
 
 // The corrections of a window of segments (004 §3.2), each candidate scored by the evidence grid
-// of the base with the window's scans (one in scan_stride) put in at the poses it gives (eqs. 1-3): objectives f1, f2
-// and f3, or for Duckett's GA their weighted sum. An evaluation costs in proportion to the
-// window's scans, whatever the base holds. The window's poses as they stand (no correction) are
-// the first population's first member.
+// of the base with the window's scans (one in scan_stride) put in at the poses it gives (eqs. 1-3):
+// objectives f1, f2 and f3, or for Duckett's GA their weighted sum. An evaluation costs in
+// proportion to the window's scans, whatever the base holds. The window's poses as they stand (no
+// correction) are the first population's first member.
 class TrajectoryWindowProblem : public Problem {
  public:
   TrajectoryWindowProblem(TrajectoryWindow window, const proto::ImmuneParams& params);
