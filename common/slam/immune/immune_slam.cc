@@ -124,6 +124,10 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// How far the grid reaches beyond the initial trajectory's scans, m: candidates that carry a scan
+// beyond it are infeasible (TrajectoryWindowProblem), so this bounds how far a window may move.
+constexpr double kRoomForCorrections = 5.0;
+
 }  // namespace
 
 void ValidateImmuneParams(const proto::ImmuneParams& params) {
@@ -184,7 +188,8 @@ ImmuneSlamResult RunImmuneSlam(const Dataset& dataset, std::span<const Pose2> in
   for (std::size_t k = 0; k < n; ++k) scans.emplace_back(dataset.scans[k], params.evidence());
   std::vector<PlacedScan> at_initial;
   for (std::size_t k = 0; k < n; ++k) at_initial.push_back({&scans[k], initial[k]});
-  const GridGeometry geometry = EvidenceGeometryFor(at_initial, params.evidence(), 30.0);
+  const GridGeometry geometry =
+      EvidenceGeometryFor(at_initial, params.evidence(), kRoomForCorrections);
 
   ImmuneSlamResult result{.poses = {},
                           .map = EvidenceGrid(geometry, params.evidence()),

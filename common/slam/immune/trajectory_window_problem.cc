@@ -5,6 +5,7 @@
 
 #include "common/slam/immune/key_point_immunity.h"
 #include "common/util/error.h"
+#include "common/util/infinity.h"
 
 namespace evoslam {
 
@@ -70,6 +71,18 @@ EvidenceObjectives TrajectoryWindowProblem::Score(const Eigen::Ref<const Eigen::
                                                   std::vector<Pose2>& poses,
                                                   std::vector<PlacedScan>& placed) const {
   Poses(x, poses);
+  // A candidate that carries scans off the grid is infeasible: readings that fall outside count
+  // nowhere, so every objective would reward throwing them off.
+  const GridGeometry& g = window_.base->geometry();
+  const double reach = window_.base->params().max_range_m();
+  const Eigen::Vector2d low = g.origin().array() + reach;
+  const Eigen::Vector2d high = g.max_corner().array() - reach;
+  for (const Pose2& pose : poses) {
+    const Eigen::Vector2d p = pose.translation();
+    if (!(p.x() >= low.x() && p.y() >= low.y() && p.x() <= high.x() && p.y() <= high.y())) {
+      return {.consistency = kInfinity, .occupied = 0, .empty = 0};
+    }
+  }
   placed.clear();
   const std::size_t first = first_scan();
   for (std::size_t k = 0; k < poses.size(); ++k) {
@@ -104,6 +117,10 @@ double TrajectoryWindowProblem::LocalConsistency(const Eigen::Ref<const Eigen::V
 
 void TrajectoryWindowProblem::WriteFitness(const EvidenceObjectives& o,
                                            std::span<double> out) const {
+  if (o.consistency == kInfinity) {  // off the grid (Score)
+    std::fill(out.begin(), out.end(), kInfinity);
+    return;
+  }
   if (variant_ == ImmuneVariant::kDuckett) {
     out[0] = o.consistency + search_.occupied_weight() * static_cast<double>(o.occupied) +
              search_.empty_weight() * static_cast<double>(o.empty);

@@ -76,6 +76,8 @@ class TrajectoryWindowProblem : public Problem {
 
  private:
   void WriteFitness(const EvidenceObjectives& o, std::span<double> out) const;
+  // The objectives of x; an infinite consistency when x carries a scan off the grid, which
+  // WriteFitness turns into infinite objectives: such a candidate is infeasible.
   EvidenceObjectives Score(const Eigen::Ref<const Eigen::VectorXd>& x, EvidenceOverlay& overlay,
                            std::vector<Pose2>& poses, std::vector<PlacedScan>& placed) const;
 
