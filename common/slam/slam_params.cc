@@ -173,9 +173,16 @@ proto::SlamParams WithDefaults(const proto::SlamParams& params) {
 void SetSlamParam(proto::SlamParams& params, std::string_view name, std::string_view text) {
   // The method's own parameters first, so that its message's prefix may be left out.
   const pb::FieldDescriptor& method = MethodField(params.method());
-  pb::Message& own = *params.GetReflection()->MutableMessage(&params, &method);
+  const pb::Reflection& reflection = *params.GetReflection();
+  const bool had_own = reflection.HasField(params, &method);
+  pb::Message& own = *reflection.MutableMessage(&params, &method);
   auto found = FindPath(own, name);
-  if (!found) found = FindPath(params, name);
+  if (!found) {
+    // Looking the name up made the method's message; a parameter from the top (the method
+    // itself, say) leaves it as it was, so that no other method's parameters seem given.
+    if (!had_own) reflection.ClearField(&params, &method);
+    found = FindPath(params, name);
+  }
   if (!found) {
     throw Error("no SLAM parameter is named '" + std::string(name) +
                 "' (docs/configuration.md lists them)");

@@ -68,13 +68,19 @@ TEST(SlamParamsTest, UnsetFieldsReadAsTheirDefaultsAndCompletingSetsThemAll) {
   EXPECT_EQ(complete.rss().local().fitness(), "eval1");
   EXPECT_EQ(complete.rss().global().generations(), 100u);
   EXPECT_FALSE(complete.has_log());
-  ForEachParameter(*proto::SlamParams::descriptor(), "",
-                   [&](const std::string& name, const pb::FieldDescriptor& f) {
-                     if (name == "log") return;
-                     // The field as the message holding it sees it.
-                     EXPECT_NE(SlamParamsText(complete).find(f.name() + ":"), std::string::npos)
-                         << name;
-                   });
+  // Completing sets every field of the top level and of the run's method, whichever it is.
+  for (const std::string& method : SlamMethodNames()) {
+    proto::SlamParams chosen;
+    chosen.set_method(method);
+    const std::string text = SlamParamsText(WithDefaults(chosen));
+    ForEachParameter(*proto::SlamParams::descriptor(), "",
+                     [&](const std::string& name, const pb::FieldDescriptor& f) {
+                       const bool top = name.find('.') == std::string::npos;
+                       if (name == "log" || !(top || name.starts_with(method + "."))) return;
+                       // The field as the message holding it sees it.
+                       EXPECT_NE(text.find(f.name() + ":"), std::string::npos) << name;
+                     });
+  }
 }
 
 // Every parameter set by its dotted name reaches the message, survives completion, and comes
@@ -101,11 +107,22 @@ TEST(SlamParamsTest, EveryParameterRoundTripsThroughItsNameAndTheTextFile) {
 }
 
 TEST(SlamParamsTest, TheMethodsAreTheMessagesOfTheParameters) {
-  EXPECT_EQ(SlamMethodNames(), std::vector<std::string>{"rss"});
+  EXPECT_EQ(SlamMethodNames(), (std::vector<std::string>{"rss", "immune"}));
   proto::SlamParams p;
   p.set_method("gslam");
-  EXPECT_THAT(ErrorOf([&] { CheckOneMethodsParams(p); }), HasSubstr("(rss)"));
+  EXPECT_THAT(ErrorOf([&] { CheckOneMethodsParams(p); }), HasSubstr("(rss, immune)"));
   EXPECT_THAT(ErrorOf([&] { SetSlamParam(p, "local.particles", "3"); }), HasSubstr("gslam"));
+}
+
+TEST(SlamParamsTest, ChoosingTheMethodByNameGivesNoOtherMethodsParameters) {
+  proto::SlamParams p;
+  SetSlamParam(p, "method", "immune");
+  EXPECT_FALSE(p.has_rss());
+  EXPECT_NO_THROW(CheckOneMethodsParams(p));
+  SetSlamParam(p, "search.population", "20");
+  EXPECT_EQ(p.immune().search().population(), 20u);
+  EXPECT_THAT(ErrorOf([&] { SetSlamParam(p, "local.particles", "3"); }),
+              HasSubstr("local.particles"));
 }
 
 TEST(SlamParamsTest, NamesMayLeaveOutTheMethodsPrefix) {

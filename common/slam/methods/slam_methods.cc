@@ -3,6 +3,7 @@
 #include <array>
 #include <string>
 
+#include "common/slam/immune/immune_method.h"
 #include "common/slam/rss/rss_method.h"
 #include "common/slam/slam_params.h"
 #include "common/util/error.h"
@@ -11,7 +12,8 @@ namespace evoslam {
 
 const SlamMethod& FindSlamMethod(std::string_view name) {
   static const RssMethod rss;
-  static const std::array<const SlamMethod*, 1> methods = {&rss};
+  static const ImmuneMethod immune;
+  static const std::array<const SlamMethod*, 2> methods = {&rss, &immune};
   for (const SlamMethod* method : methods) {
     if (method->name() == name) return *method;
   }

@@ -18,7 +18,7 @@ using ::testing::HasSubstr;
 
 TEST(SlamMethodsTest, EveryMethodTheParametersDeclareIsThere) {
   for (const std::string& name : SlamMethodNames()) EXPECT_EQ(FindSlamMethod(name).name(), name);
-  EXPECT_THAT(ErrorOf([] { FindSlamMethod("gslam"); }), HasSubstr("(rss)"));
+  EXPECT_THAT(ErrorOf([] { FindSlamMethod("gslam"); }), HasSubstr("(rss, immune)"));
 }
 
 TEST(SlamMethodsTest, CompletingSetsEveryParameterOfTheMethod) {
@@ -36,7 +36,7 @@ TEST(SlamMethodsTest, BadValuesAreRefusedByName) {
     return ErrorOf([&] { CompleteSlamParams(p); });
   };
   EXPECT_THAT(refused("method", "gmapping"), HasSubstr("gmapping"));
-  EXPECT_THAT(refused("method", "gmapping"), HasSubstr("(rss)"));
+  EXPECT_THAT(refused("method", "gmapping"), HasSubstr("(rss, immune)"));
   EXPECT_THAT(refused("local.fitness", "eval3"), HasSubstr("eval3"));
   EXPECT_THAT(refused("local.particles", "1"), HasSubstr("local.particles"));
   EXPECT_THAT(refused("local.iterations", "0"), HasSubstr("local.iterations"));
@@ -53,6 +53,23 @@ TEST(SlamMethodsTest, BadValuesAreRefusedByName) {
   EXPECT_THAT(refused("loops.min_match_score", "0"), HasSubstr("loops.min_match_score"));
   EXPECT_THAT(refused("loops.min_side_agreement", "1.5"), HasSubstr("loops.min_side_agreement"));
   EXPECT_THAT(refused("loops.max_match_window_m", "1"), HasSubstr("loops.max_match_window_m"));
+}
+
+TEST(SlamMethodsTest, BadValuesOfTheImmuneMethodAreRefusedByName) {
+  const auto refused = [](const std::string& name, const std::string& value) {
+    proto::SlamParams p;
+    SetSlamParam(p, "method", "immune");
+    SetSlamParam(p, name, value);
+    return ErrorOf([&] { CompleteSlamParams(p); });
+  };
+  EXPECT_THAT(refused("variant", "nsga2"), HasSubstr("nsga2"));
+  EXPECT_THAT(refused("search.p_immunity", "1.5"), HasSubstr("p_immunity"));
+  EXPECT_THAT(refused("search.population", "2"), HasSubstr("population"));
+  EXPECT_THAT(refused("segments.encoding", "binary"), HasSubstr("encoding"));
+  EXPECT_THAT(refused("segments.length_m", "0"), HasSubstr("length_m"));
+  EXPECT_THAT(refused("evidence.max_belief", "1"), HasSubstr("max_belief"));
+  EXPECT_THAT(refused("key_points.min_section_points", "0"), HasSubstr("min_section_points"));
+  EXPECT_THAT(refused("scan_stride", "0"), HasSubstr("scan_stride"));
 }
 
 }  // namespace
