@@ -73,7 +73,8 @@ TEST(ImmuneSlamTest, ItMakesTheMapMoreConsistentAndTheTrajectoryCloserToTheTruth
   const double after = ComputeAbsoluteErrors(Stamped(lab, r.poses), Truth(lab)).rms_translation;
   EXPECT_LT(after, before);
   // The member applied is no worse than the window as it stood by the weighted sum that chose it.
-  const proto::ImmuneSearchParams& s = Quick().search();
+  const proto::ImmuneParams quick = Quick();
+  const proto::ImmuneSearchParams& s = quick.search();
   const auto sum = [&](const auto& f) {
     return f.Get(0) + s.occupied_weight() * f.Get(1) + s.empty_weight() * f.Get(2);
   };
