@@ -70,6 +70,10 @@ std::string TypeName(const google::protobuf::FieldDescriptor& field) {
 // their defaults); throws Error saying what is wrong.
 void CheckParam(const std::string& name, const std::string& text) {
   proto::SlamParams p;
+  // A method's own parameter is checked in a run of that method.
+  for (const std::string& method : SlamMethodNames()) {
+    if (name.starts_with(method + ".")) p.set_method(method);
+  }
   SetSlamParam(p, name, text);
   ValidateSlamParams(p);
 }

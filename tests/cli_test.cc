@@ -350,6 +350,28 @@ TEST_F(CliTest, SlamFlagsSetTheirParameters) {
   }
 }
 
+// Another method's flags set its parameters, in whatever order they come with --method; a flag of
+// a method other than the run's is refused.
+TEST_F(CliTest, TheImmuneMethodsFlagsSetItsParameters) {
+  const Result set = RunCli(
+      "slam --print-params --variant moea --method immune --window-segments 8 --population 20 "
+      "--max-generations 40 --encoding continuous --evidence-cell 0.1 --param scan_stride=2");
+  ASSERT_EQ(set.status, 0) << set.output;
+  for (const char* line :
+       {"method: \"immune\"", "variant: \"moea\"", "window_segments: 8", "population: 20",
+        "generations: 40", "encoding: \"continuous\"", "cell_size_m: 0.1", "scan_stride: 2"}) {
+    EXPECT_NE(set.output.find(std::string(line) + "\n"), std::string::npos) << line << "\n"
+                                                                            << set.output;
+  }
+  EXPECT_EQ(set.output.find("rss {"), std::string::npos) << set.output;
+  const Result mixed = RunCli("slam --print-params --variant moea");
+  EXPECT_EQ(mixed.status, 2) << mixed.output;
+  EXPECT_NE(mixed.output.find("parameters of method immune"), std::string::npos) << mixed.output;
+  const Result bad = RunCli("slam --print-params --method immune --variant nsga2");
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  EXPECT_NE(bad.output.find("nsga2"), std::string::npos) << bad.output;
+}
+
 // What --print-params writes, --config reads back to the same run; flags and --param apply on
 // top of the file.
 TEST_F(CliTest, SlamConfigReadsBackWhatPrintParamsWrites) {
