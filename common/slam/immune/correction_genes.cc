@@ -1,6 +1,5 @@
 #include "common/slam/immune/correction_genes.h"
 
-#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -46,28 +45,6 @@ Eigen::Vector2d CorrectionGenes::KeyPointOffset(const Eigen::Ref<const Eigen::Ve
                                                 std::size_t i) const {
   const auto gene = static_cast<Eigen::Index>(2 * segments_ + 2 * i);
   return {x[gene], x[gene + 1]};
-}
-
-double CorrectionGenes::LengthGeneFor(double length_m) const {
-  double gene = length_m / length_unit_;
-  if (encoding_ == Encoding::kInteger) gene = std::round(gene);
-  return std::clamp(gene, lower_[0], upper_[0]);
-}
-
-Eigen::VectorXd CorrectionGenes::Encode(std::span<const SegmentCorrection> corrections) const {
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(dimension()));
-  for (std::size_t j = 0; j < segments_ && j < corrections.size(); ++j) {
-    double length = corrections[j].length / length_unit_;
-    double turn = corrections[j].turn / turn_unit_;
-    if (encoding_ == Encoding::kInteger) {
-      length = std::round(length);
-      turn = std::round(turn);
-    }
-    const auto g = static_cast<Eigen::Index>(2 * j);
-    x[g] = std::clamp(length, lower_[g], upper_[g]);
-    x[g + 1] = std::clamp(turn, lower_[g + 1], upper_[g + 1]);
-  }
-  return x;
 }
 
 }  // namespace evoslam

@@ -38,11 +38,6 @@ class CorrectionGenes {
   Eigen::Vector2d KeyPointOffset(const Eigen::Ref<const Eigen::VectorXd>& x, std::size_t i) const;
   // The gene of segment j's length correction.
   static std::size_t LengthGene(std::size_t j) { return 2 * j; }
-  // A length correction in m as the gene that comes nearest it, within the bounds.
-  double LengthGeneFor(double length_m) const;
-  // The genes of corrections in m and rad (each rounded to its unit when integer); key point
-  // offsets 0.
-  Eigen::VectorXd Encode(std::span<const SegmentCorrection> corrections) const;
 
  private:
   std::size_t segments_;
