@@ -19,6 +19,8 @@ inline constexpr int kGlyphWidth = 5;
 inline constexpr int kGlyphHeight = 9;
 inline constexpr int kGlyphAdvance = 6;
 inline constexpr int kLineAdvance = 11;
+// The capitals' height above the baseline, which marks and numbers beside text are centred on.
+inline constexpr int kCapitalHeight = 7;
 
 // Pixels from the first glyph's left edge to the last one's right edge; 0 for no text.
 int TextWidth(std::string_view text, int scale = 1);

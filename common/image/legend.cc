@@ -16,9 +16,6 @@ constexpr int kMarkGap = 4;
 constexpr int kEntryGap = 12;
 constexpr int kRowPitch = 14;
 
-// Marks are centred on, and swatches as tall as, the labels' capitals.
-constexpr int kCapHeight = 7;
-
 int EntryWidth(const LegendEntry& entry, int scale) {
   return (kMarkLength + kMarkGap) * scale + TextWidth(entry.label, scale);
 }
@@ -43,7 +40,7 @@ Marker MarkerOf(LegendMark mark) {
 
 void DrawMark(Image& image, int x, int y, const LegendEntry& entry, Rgb ink, int scale) {
   const int length = kMarkLength * scale;
-  const double middle = y + (kCapHeight * scale - 1) / 2.0;
+  const double middle = y + (kCapitalHeight * scale - 1) / 2.0;
   switch (entry.mark) {
     case LegendMark::kLine:
       image.DrawLine(x, middle, x + length - 1, middle, entry.color, entry.thickness);
@@ -57,7 +54,7 @@ void DrawMark(Image& image, int x, int y, const LegendEntry& entry, Rgb ink, int
       break;
     }
     case LegendMark::kSwatch: {
-      const int side = kCapHeight * scale;
+      const int side = kCapitalHeight * scale;
       const int left = x + (length - side) / 2;
       image.FillRect(left, y, side, side, ink);
       image.FillRect(left + 1, y + 1, side - 2, side - 2, entry.color);
@@ -67,7 +64,7 @@ void DrawMark(Image& image, int x, int y, const LegendEntry& entry, Rgb ink, int
     case LegendMark::kRing:
     case LegendMark::kCross:
       DrawMarker(image, x + (length - 1) / 2.0, middle, MarkerOf(entry.mark),
-                 kCapHeight * scale / 2.0, entry.color);
+                 kCapitalHeight * scale / 2.0, entry.color);
       break;
   }
 }

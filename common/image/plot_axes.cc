@@ -18,8 +18,6 @@ namespace {
 // and between the numbers and an axis's name.
 constexpr int kTickLength = 3;
 constexpr int kAxisGap = 4;
-// The font's capitals, which a y tick's number is centred on.
-constexpr int kCapitalHeight = 7;
 constexpr int kMinAreaPixels = 20;
 // Fixed-point numbers with more decimals than this read worse than an exponent.
 constexpr int kMaxDecimals = 8;
