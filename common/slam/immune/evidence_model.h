@@ -17,9 +17,8 @@
 // the belief not committed against each hypothesis (Pl(occ) = 1 - emp, Pl(emp) = 1 - occ), so that
 // each cell adds min(occ, emp): nothing where its readings agree, most where they contradict each
 // other. Read with beliefs, eq. 1 sums what the readings leave unsure, which falls wherever more
-// readings pile into fewer cells: on a simulated office that f1 ranks the truth worst, odometry
-// better and a trajectory collapsed onto itself best, and every search we ran on it collapsed the
-// map (docs/methods/immune.md). Read with plausibilities it ranks them the other way round.
+// readings pile into fewer cells, so it rewards a trajectory that folds onto itself
+// (docs/methods/immune.md measures both readings).
 //
 // Exactness: each reading's -log(1 - s) is rounded to a whole number of kEvidenceUnit, and the sums
 // are integers, so that adding and taking back a scan are exact inverses and a cell's state does

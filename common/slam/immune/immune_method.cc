@@ -65,7 +65,7 @@ MemoryNeed ImmuneMethod::PeakMemory(const Dataset& dataset, const proto::SlamPar
   }
   if (n == 0) low = high = Eigen::Vector2d::Zero();
   // The grid covers the path widened by the range cut, with room for the corrections.
-  const Eigen::Vector2d extent = (high - low).array() + 2.0 * (e.max_range_m() + 5.0);
+  const Eigen::Vector2d extent = (high - low).array() + 2.0 * (e.max_range_m() + kImmuneGridRoom);
   const double cells =
       std::ceil(extent.x() / e.cell_size_m()) * std::ceil(extent.y() / e.cell_size_m());
   // Per cell: the map, the empty base of immune selection's local grids, and an overlay's scratch

@@ -14,6 +14,7 @@
 #include "common/slam/immune/trajectory_segments.h"
 #include "common/slam/immune/trajectory_window_problem.h"
 #include "common/util/error.h"
+#include "common/util/finite_checks.h"
 #include "common/util/random.h"
 
 namespace evoslam {
@@ -73,7 +74,7 @@ Population FinalCandidates(const Archipelago& islands) {
 double WeightedSum(const Eigen::Ref<const Eigen::VectorXd>& f,
                    const proto::ImmuneSearchParams& search) {
   if (f.size() == 1) return f[0];
-  return f[0] + search.occupied_weight() * f[1] + search.empty_weight() * f[2];
+  return DuckettSum(f[0], f[1], f[2], search);
 }
 
 std::size_t ChosenMember(const Eigen::MatrixXd& f, const proto::ImmuneSearchParams& search) {
@@ -124,10 +125,6 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// How far the grid reaches beyond the initial trajectory's scans, m: candidates that carry a scan
-// beyond it are infeasible (TrajectoryWindowProblem), so this bounds how far a window may move.
-constexpr double kRoomForCorrections = 5.0;
-
 }  // namespace
 
 void ValidateImmuneParams(const proto::ImmuneParams& params) {
@@ -154,7 +151,7 @@ void ValidateImmuneParams(const proto::ImmuneParams& params) {
   }
   for (const auto& [value, field] : {std::pair{s.occupied_weight(), "occupied_weight"},
                                      std::pair{s.empty_weight(), "empty_weight"}}) {
-    if (!(value >= 0.0) || !std::isfinite(value)) {
+    if (!IsFiniteNonNegative(value)) {
       throw Error(std::string("immune.search.") + field + " must be finite and not negative");
     }
   }
@@ -188,8 +185,7 @@ ImmuneSlamResult RunImmuneSlam(const Dataset& dataset, std::span<const Pose2> in
   for (std::size_t k = 0; k < n; ++k) scans.emplace_back(dataset.scans[k], params.evidence());
   std::vector<PlacedScan> at_initial;
   for (std::size_t k = 0; k < n; ++k) at_initial.push_back({&scans[k], initial[k]});
-  const GridGeometry geometry =
-      EvidenceGeometryFor(at_initial, params.evidence(), kRoomForCorrections);
+  const GridGeometry geometry = EvidenceGeometryFor(at_initial, params.evidence(), kImmuneGridRoom);
 
   ImmuneSlamResult result{.poses = {},
                           .map = EvidenceGrid(geometry, params.evidence()),

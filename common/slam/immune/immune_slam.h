@@ -15,6 +15,11 @@
 
 namespace evoslam {
 
+// How far the evidence grid reaches beyond the initial trajectory's scans, m: candidates that carry
+// a scan beyond it are infeasible (TrajectoryWindowProblem), so this bounds how far a window may
+// move.
+inline constexpr double kImmuneGridRoom = 5.0;
+
 // Throws Error naming the first parameter of the immune method out of its range.
 void ValidateImmuneParams(const proto::ImmuneParams& params);
 

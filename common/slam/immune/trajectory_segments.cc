@@ -7,12 +7,13 @@
 #include <string>
 
 #include "common/util/error.h"
+#include "common/util/finite_checks.h"
 
 namespace evoslam {
 namespace {
 
 void RequirePositive(double value, const char* field) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
+  if (!IsFinitePositive(value)) {
     throw Error(fmt::format("immune.segments.{} must be positive, not {}", field, value));
   }
 }

@@ -16,6 +16,11 @@ ImmuneVariant ParseImmuneVariant(std::string_view name) {
   throw Error("immune.variant must be immune, moea or duckett, not '" + std::string(name) + "'");
 }
 
+double DuckettSum(double consistency, double occupied, double empty,
+                  const proto::ImmuneSearchParams& search) {
+  return consistency + search.occupied_weight() * occupied + search.empty_weight() * empty;
+}
+
 TrajectoryWindowProblem::TrajectoryWindowProblem(TrajectoryWindow window,
                                                  const proto::ImmuneParams& params)
     : window_(std::move(window)),
@@ -122,8 +127,8 @@ void TrajectoryWindowProblem::WriteFitness(const EvidenceObjectives& o,
     return;
   }
   if (variant_ == ImmuneVariant::kDuckett) {
-    out[0] = o.consistency + search_.occupied_weight() * static_cast<double>(o.occupied) +
-             search_.empty_weight() * static_cast<double>(o.empty);
+    out[0] = DuckettSum(o.consistency, static_cast<double>(o.occupied),
+                        static_cast<double>(o.empty), search_);
     return;
   }
   out[0] = o.consistency;

@@ -26,6 +26,11 @@ enum class ImmuneVariant {
 };
 ImmuneVariant ParseImmuneVariant(std::string_view name);  // throws Error listing the variants
 
+// Duckett's fitness, f1 + occupied_weight f2 + empty_weight f3: the duckett variant's one
+// objective, and what picks the member applied from the other variants' fronts.
+double DuckettSum(double consistency, double occupied, double empty,
+                  const proto::ImmuneSearchParams& search);
+
 // A key point as one window sees it: where it is, and its sightings from the window's scans.
 struct WindowKeyPoint {
   Eigen::Vector2d position;
